@@ -1,0 +1,42 @@
+// The command line of shared/cli.md, parsed with CLI11. Shared by the headless program and the
+// window, so that every option means the same in both.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "coupled_springs.hpp"
+#include "single_spring.hpp"
+#include "spring_mesh.hpp"
+
+namespace clothlab {
+
+enum class backend_kind { cpu, gpu };
+
+struct options {
+  bool headless = false;
+  stage_kind stage = stage_kind::cloth;
+  backend_kind backend = backend_kind::cpu;
+  long steps = 1000;     // headless: steps to run
+  std::string csv_path;  // empty: no CSV
+  long csv_every = 1;
+  std::string obj_path;  // empty: no OBJ
+  std::string png_path;  // empty: no PNG
+  int width = 800;       // px, of --png
+  int height = 600;      // px, of --png
+  single_spring_parameters spring;
+  coupled_springs_parameters coupled;
+  cloth_parameters cloth;
+};
+
+struct parse_result {
+  std::optional<options> parsed;  // set when the program should go on
+  int exit_code = 0;              // when not: 0 after --help/--version, 2 after bad usage
+};
+
+// Parses argv. --help and --version print to stdout; bad usage prints one line to stderr
+// naming the option and what is wrong. Options that every stage shares (--dt, --mu, --mass,
+// --gravity, --integrator) are set in all three parameter structs.
+parse_result parse_command_line(int argc, const char* const* argv);
+
+}  // namespace clothlab

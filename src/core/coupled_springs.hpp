@@ -1,0 +1,37 @@
+// Stage 2 (question 5): a chain of n masses hanging from the fixed p0 = (0.1, 0, 1).
+// Mass i starts at p0 + i (0, 0, -0.5); spring i joins masses i-1 and i; the last mass starts
+// with velocity (1, -1, 0). Particle 0 is p0, then 1..n down the chain.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "parameters.hpp"
+#include "particle_system.hpp"
+#include "spring.hpp"
+
+namespace clothlab {
+
+class coupled_springs {
+ public:
+  coupled_springs_parameters parameters;  // edited live; mass_count is read by load_model
+
+  explicit coupled_springs(const coupled_springs_parameters& p = {});
+
+  void load_model();     // initialisation of the chain (rebuilds it for mass_count)
+  void compute_force();  // the forces of every spring of the chain
+  void apply_force();    // numerical integration of one step (model.md)
+  void step() {
+    compute_force();
+    apply_force();
+  }
+
+  const particle_system& particles() const { return particles_; }
+  std::span<const spring> springs() const { return springs_; }
+
+ private:
+  particle_system particles_;
+  std::vector<spring> springs_;
+};
+
+}  // namespace clothlab

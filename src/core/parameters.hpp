@@ -1,0 +1,67 @@
+// The parameters of clothlab's three stages, one struct per stage (shared/model.md).
+// Every field carries its unit and its default. The window edits these structs and nothing
+// else; the command line fills them once.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <string_view>
+
+namespace clothlab {
+
+// The three stages of the lab.
+enum class stage_kind { spring, coupled, cloth };
+std::string_view stage_name(stage_kind stage);  // "spring", "coupled", "cloth"
+
+// How one step of length dt advances (model.md, "Integrators").
+enum class integrator_kind {
+  semi_implicit,  // v <- (1 - mu dt) v + dt a(p), then p <- p + dt v (the handout's code order)
+  explicit_euler  // p <- p + dt v and v <- (1 - mu dt) v + dt a(p), both from the old state (eq. 6)
+};
+
+std::string_view integrator_name(integrator_kind kind);  // "semi-implicit", "explicit"
+
+// What every stage shares: time step, damping, mass, gravity and the integrator.
+struct dynamics_parameters {
+  double time_step = 0.002;  // dt, s
+  double damping = 0.0;      // mu, 1/s: the velocity is multiplied by (1 - mu dt) every step
+  double mass = 1.0;         // m, kg, of every moving particle
+  double gravity = 9.8;      // g0, m/s^2: gravity is (0, 0, -g0)
+  integrator_kind integrator = integrator_kind::semi_implicit;
+};
+
+// Stage 1: one spring from the fixed p0 = (0.1, 0, 1) to p1 (handout section 3).
+struct single_spring_parameters {
+  dynamics_parameters dynamics{.time_step = 0.01, .damping = 0.2};
+  double stiffness = 20.0;  // K, N/m
+};
+
+// Stage 2: a chain of masses hanging from p0 (question 5).
+struct coupled_springs_parameters {
+  dynamics_parameters dynamics{.time_step = 0.01, .damping = 0.2};
+  double stiffness = 20.0;  // K, N/m, of every spring of the chain
+  int mass_count = 2;       // n, moving masses (1 gives the single spring)
+};
+
+enum class pin_mode {
+  corners,  // particles (0, 0) and (N-1, 0) never move (question 7)
+  none      // free fall
+};
+
+// Stage 3: the N x N cloth (handout section 4).
+struct cloth_parameters {
+  dynamics_parameters dynamics{.time_step = 0.002, .damping = 0.5};
+  int grid_size = 20;                    // N: N x N particles (rebuilds the cloth)
+  double side_length = 1.0;              // S, m: side of the initial flat square (rebuilds)
+  double structural_stiffness = 5000.0;  // K_struct, N/m: (ku,kv)-(ku+1,kv) and (ku,kv)-(ku,kv+1)
+  double shear_stiffness = 2000.0;       // K_shear, N/m: the two diagonals of each cell
+  double bending_stiffness = 500.0;      // K_bend, N/m: (ku,kv)-(ku+2,kv) and (ku,kv)-(ku,kv+2)
+  pin_mode pins = pin_mode::corners;     // which particles never move (rebuilds)
+  double wind_strength = 0.0;            // K_w, N: F_w = K_w <n, u_w> n
+  glm::dvec3 wind_direction = {0.0, 1.0, 0.0};  // u_w, normalised before use; must not be zero
+  bool ground_enabled = true;                   // the plane z = ground_height (question 9)
+  double ground_height = -1.0;                  // z_g, m
+  double ground_friction = 2.0;  // mu_g, 1/s: tangential velocity *= (1 - mu_g dt) in contact
+};
+
+}  // namespace clothlab

@@ -1,0 +1,36 @@
+// Stage 1 (handout section 3, questions 2 to 4): one spring from the fixed point
+// p0 = (0.1, 0, 1) to the moving mass p1, which starts at (0.1, 0, 0.5) with velocity (1, -1, 0).
+#pragma once
+
+#include <array>
+#include <span>
+
+#include "parameters.hpp"
+#include "particle_system.hpp"
+#include "spring.hpp"
+
+namespace clothlab {
+
+class single_spring {
+ public:
+  single_spring_parameters parameters;  // edited live; read at every step
+
+  explicit single_spring(const single_spring_parameters& p = {});
+
+  void load_model();     // initialisation: p0, p1, v1 and L0 = |p1 - p0| (particle 0 is p0)
+  void compute_force();  // force computation: the spring force on both ends (equation 2)
+  void apply_force();    // numerical integration of one step (model.md)
+  void step() {
+    compute_force();
+    apply_force();
+  }
+
+  const particle_system& particles() const { return particles_; }
+  std::span<const spring> springs() const { return springs_; }
+
+ private:
+  particle_system particles_;
+  std::array<spring, 1> springs_{};
+};
+
+}  // namespace clothlab

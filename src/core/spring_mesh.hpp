@@ -1,0 +1,79 @@
+// Stage 3 (handout section 4, questions 6 to 10 and 13): the N x N cloth.
+// Particle (ku, kv) has index k = ku + N kv; its coordinate c is at 3k + c of the flat arrays.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "parameters.hpp"
+#include "particle_system.hpp"
+#include "spring.hpp"
+
+namespace clothlab {
+
+// The three kinds of springs of the handout's figure 6, each with its own stiffness.
+enum class spring_family { structural, shear, bending };
+inline constexpr std::array<spring_family, 3> all_spring_families = {
+    spring_family::structural, spring_family::shear, spring_family::bending};
+std::string_view spring_family_name(spring_family family);  // "structural", "shear", "bending"
+
+class spring_mesh {
+ public:
+  cloth_parameters parameters;  // edited live; grid_size, side_length and pins need load_model
+
+  explicit spring_mesh(const cloth_parameters& p = {});
+
+  // Initialisation: the flat N x N grid at rest at z = 0, its springs and its pins.
+  void load_model();
+  // Force computation (question 8): vertex normals, then the spring forces of the three
+  // families and the wind force (question 13), all from the current positions.
+  void compute_force();
+  // Numerical integration (question 6), then the ground contact (question 9).
+  void apply_force();
+  void step() {
+    compute_force();
+    apply_force();
+  }
+
+  // Recomputes normals() from the current positions (compute_force does it at the start of
+  // every step; call it before drawing or exporting the state after a step).
+  void compute_normals();
+
+  int grid_size() const { return grid_size_; }  // N of the last load_model
+  static std::size_t index(int ku, int kv, int n) {
+    return static_cast<std::size_t>(ku) + static_cast<std::size_t>(n) * kv;
+  }
+
+  const particle_system& particles() const { return particles_; }
+  particle_system& particles() { return particles_; }  // to carry a state in (GPU -> CPU)
+  std::span<const double> normals() const { return normals_; }
+  std::span<const spring> springs(spring_family family) const {
+    return springs_[static_cast<int>(family)];
+  }
+  double stiffness(spring_family family) const;  // from parameters
+
+ private:
+  int grid_size_ = 0;
+  particle_system particles_;
+  std::vector<double> normals_;                 // n, unit, 3k + c
+  std::array<std::vector<spring>, 3> springs_;  // indexed by spring_family
+};
+
+// Vertex normals of an N x N grid by central differences (model.md):
+// n = normalize(d_u x d_v), d_u = p(min(ku+1,N-1),kv) - p(max(ku-1,0),kv), d_v likewise in kv.
+void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal);
+
+// Adds the wind force F_w = K_w <n, u_w> n to every particle (u_w normalised here).
+void accumulate_wind_forces(double strength, const glm::dvec3& direction,
+                            std::span<const double> normal, std::span<double> force);
+
+// The ground plane z = z_g, after the integrator: every particle that is not fixed and is below
+// it is put back on it, loses its downward velocity and has its tangential velocity damped by
+// (1 - mu_g dt).
+void apply_ground_contact(double ground_height, double ground_friction, double time_step,
+                          particle_system& particles);
+
+}  // namespace clothlab

@@ -1,0 +1,30 @@
+// An orbit camera: it looks at a target from a distance, turned by yaw (around z, which is up)
+// and pitch (above the horizontal). No GL here: matrices only.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "parameters.hpp"  // stage_kind
+
+namespace clothlab {
+
+struct camera {
+  glm::vec3 target = {0.0f, 0.0f, -0.3f};  // m, the point looked at
+  float distance = 3.0f;                   // m, from target to eye
+  float yaw = -0.6f;                       // rad, around z
+  float pitch = 0.35f;                     // rad, above the horizontal (clamped to +-1.5)
+  float field_of_view = 0.8f;              // rad, vertical
+
+  static camera default_for(stage_kind stage);  // the fixed view of --png and the reset-view key
+
+  glm::vec3 eye() const;
+  glm::mat4 view() const;
+  glm::mat4 projection(float aspect) const;  // aspect = width / height
+
+  void orbit(float delta_yaw, float delta_pitch);  // left mouse drag
+  void zoom(float factor);                         // wheel: distance *= factor, kept in [0.2, 50]
+  void pan(float dx, float dy);                    // right mouse drag, in units of distance
+};
+
+}  // namespace clothlab

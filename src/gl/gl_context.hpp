@@ -1,0 +1,26 @@
+// An OpenGL 3.3 core context, current on the calling thread while the object lives.
+// Two implementations: the GLFW window (src/window) and the off-screen OSMesa buffer
+// (osmesa_context.cpp). The rendering and GPU simulation code above it does not know which one
+// it runs on; an EGL implementation can be added beside OSMesa without touching them.
+#pragma once
+
+#include <memory>
+#include <string>
+
+namespace clothlab {
+
+class gl_context {
+ public:
+  virtual ~gl_context() = default;
+  // Size of the default framebuffer (framebuffer 0) in pixels.
+  virtual int framebuffer_width() const = 0;
+  virtual int framebuffer_height() const = 0;
+  // "renderer, version" as the driver reports them (GL_RENDERER, GL_VERSION).
+  std::string description() const;
+};
+
+// An off-screen context whose default framebuffer is a width x height RGBA buffer in memory.
+// Returns null and sets error (a full sentence) when it cannot be made.
+std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std::string& error);
+
+}  // namespace clothlab

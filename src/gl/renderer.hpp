@@ -1,0 +1,57 @@
+// Draws the three stages: springs as lines and masses as spheres or points (fixed ones marked);
+// the cloth as a lit, textured, two-sided mesh with the ground plane, optional wireframe and
+// springs coloured by family. The same code serves the window and the off-screen build.
+// Display only: the renderer reads the simulation state, it never changes it.
+#pragma once
+
+#include <string>
+
+#include "camera.hpp"
+#include "coupled_springs.hpp"
+#include "gl.hpp"
+#include "single_spring.hpp"
+#include "spring_mesh.hpp"
+
+namespace clothlab {
+
+struct render_settings {
+  bool wireframe = false;     // the cloth as its triangle edges (key W)
+  bool show_springs = false;  // the cloth's springs as lines, coloured by family
+  bool show_ground = true;    // the ground plane, when the cloth's ground is enabled
+};
+
+class renderer {
+ public:
+  renderer();
+  ~renderer();
+  renderer(const renderer&) = delete;
+  renderer& operator=(const renderer&) = delete;
+
+  // Loads shaders/ and assets/cloth.png; needs a current GL 3.3 context. On failure returns
+  // false with an error naming the file (and the compiler's log).
+  bool init(std::string& error);
+
+  // Each clears and draws into the currently bound framebuffer, viewport width x height.
+  void draw(const single_spring& stage, const camera& view, const render_settings& settings,
+            int width, int height);
+  void draw(const coupled_springs& stage, const camera& view, const render_settings& settings,
+            int width, int height);
+  void draw(const spring_mesh& cloth, const camera& view, const render_settings& settings,
+            int width, int height);
+  // The GPU cloth (question 11): the CPU sends a flat N x N grid once; the vertex shader fetches
+  // each vertex's position and normal from N x N RGBA32F textures (texel (ku, kv) = particle
+  // ku + N kv). Lighting, texture, ground and wireframe as for the CPU cloth; the springs
+  // overlay and the pins are taken from `cloth` (its parameters and topology, not its positions).
+  void draw_from_textures(GLuint position_texture, GLuint normal_texture, const spring_mesh& cloth,
+                          const camera& view, const render_settings& settings, int width,
+                          int height);
+
+ private:
+  struct impl;
+  impl* impl_;
+};
+
+// Reads the current framebuffer (width x height, RGBA8) and writes it as a PNG, top row first.
+bool save_framebuffer_png(const std::string& path, int width, int height, std::string& error);
+
+}  // namespace clothlab

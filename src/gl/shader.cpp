@@ -1,0 +1,124 @@
+#include "shader.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <utility>
+
+namespace clothlab {
+namespace {
+
+std::filesystem::path executable_directory() {
+  std::error_code ec;
+  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path() : exe.parent_path();
+}
+
+bool read_text(const std::filesystem::path& path, std::string& text) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return false;
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  text = buffer.str();
+  return true;
+}
+
+// Compiles one stage; returns 0 and sets error on failure.
+GLuint compile(GLenum type, std::string_view file_name, std::string& error) {
+  const auto path = shader_path(file_name);
+  std::string source;
+  if (!read_text(path, source)) {
+    error = path.string() + ": cannot read the shader file";
+    return 0;
+  }
+  GLuint shader = glCreateShader(type);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
+    glGetShaderInfoLog(shader, length, nullptr, log.data());
+    error = path.string() + ": does not compile:\n" + log.c_str();
+    glDeleteShader(shader);
+    return 0;
+  }
+  return shader;
+}
+
+}  // namespace
+
+std::filesystem::path data_directory() {
+  if (const char* env = std::getenv("CLOTHLAB_DATA_DIR"); env != nullptr && *env != '\0') {
+    return env;
+  }
+  const auto beside = executable_directory() / "share" / "clothlab";
+  std::error_code ec;
+  if (std::filesystem::is_directory(beside / "shaders", ec))
+    return beside;
+  return CLOTHLAB_SOURCE_DATA_DIR;
+}
+
+std::filesystem::path shader_path(std::string_view file_name) {
+  return data_directory() / "shaders" / file_name;
+}
+
+std::filesystem::path asset_path(std::string_view file_name) {
+  return data_directory() / "assets" / file_name;
+}
+
+shader_program::~shader_program() {
+  if (id_ != 0)
+    glDeleteProgram(id_);
+}
+
+shader_program::shader_program(shader_program&& other) noexcept
+    : id_(std::exchange(other.id_, 0)) {}
+
+shader_program& shader_program::operator=(shader_program&& other) noexcept {
+  if (this != &other) {
+    if (id_ != 0)
+      glDeleteProgram(id_);
+    id_ = std::exchange(other.id_, 0);
+  }
+  return *this;
+}
+
+bool shader_program::load(std::string_view vertex_file, std::string_view fragment_file,
+                          std::string& error) {
+  GLuint vertex = compile(GL_VERTEX_SHADER, vertex_file, error);
+  if (vertex == 0)
+    return false;
+  GLuint fragment = compile(GL_FRAGMENT_SHADER, fragment_file, error);
+  if (fragment == 0) {
+    glDeleteShader(vertex);
+    return false;
+  }
+  GLuint program = glCreateProgram();
+  glAttachShader(program, vertex);
+  glAttachShader(program, fragment);
+  glLinkProgram(program);
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
+    glGetProgramInfoLog(program, length, nullptr, log.data());
+    error = shader_path(vertex_file).string() + " + " + std::string(fragment_file) +
+            ": do not link:\n" + log.c_str();
+    glDeleteProgram(program);
+    return false;
+  }
+  *this = shader_program();
+  id_ = program;
+  return true;
+}
+
+}  // namespace clothlab

@@ -1,0 +1,42 @@
+// GLSL programs loaded from the files of shaders/. A file that is missing or does not compile or
+// link gives an error naming the file and carrying the compiler's log; nothing is drawn with it.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "gl.hpp"
+
+namespace clothlab {
+
+// The folder of shaders/ and assets/: CLOTHLAB_DATA_DIR from the environment if set, else the
+// folder beside the executable if it has shaders/ (an installed copy), else the source tree's,
+// fixed at build time. Never the working directory.
+std::filesystem::path data_directory();
+std::filesystem::path shader_path(std::string_view file_name);  // data_directory()/shaders/...
+std::filesystem::path asset_path(std::string_view file_name);   // data_directory()/assets/...
+
+// Owns a linked GL program. Move-only.
+class shader_program {
+ public:
+  shader_program() = default;
+  ~shader_program();
+  shader_program(shader_program&& other) noexcept;
+  shader_program& operator=(shader_program&& other) noexcept;
+  shader_program(const shader_program&) = delete;
+  shader_program& operator=(const shader_program&) = delete;
+
+  // Compiles shaders/<vertex_file> and shaders/<fragment_file> and links them. On failure returns
+  // false and sets error to "shaders/<file>: <what> ... <info log>".
+  bool load(std::string_view vertex_file, std::string_view fragment_file, std::string& error);
+
+  GLuint id() const { return id_; }
+  void use() const { glUseProgram(id_); }
+  GLint uniform(const char* name) const { return glGetUniformLocation(id_, name); }
+
+ private:
+  GLuint id_ = 0;
+};
+
+}  // namespace clothlab
