@@ -56,21 +56,29 @@ int report_divergence(stage_kind stage, long step, double dt) {
   return 3;
 }
 
-// Renders the final state of a CPU stage into the off-screen context and writes the PNG.
-template <class Stage>
-int write_png(const options& o, const Stage& stage) {
+// Renders the final state into the off-screen context with the stage's fixed camera and writes
+// the PNG. `draw` receives the renderer and the view and draws the state.
+template <class Draw>
+int write_png(const options& o, Draw&& draw) {
   std::string error;
-  renderer draw;
-  if (!draw.init(error)) {
+  renderer scene_renderer;
+  if (!scene_renderer.init(error)) {
     std::fprintf(stderr, "clothlab: %s\n", error.c_str());
     return 1;
   }
-  draw.draw(stage, camera::default_for(o.stage), render_settings{}, o.width, o.height);
+  draw(scene_renderer, camera::default_for(o.stage));
   if (!save_framebuffer_png(o.png_path, o.width, o.height, error)) {
     std::fprintf(stderr, "clothlab: %s\n", error.c_str());
     return 1;
   }
   return 0;
+}
+
+template <class Stage>
+int write_cpu_png(const options& o, const Stage& stage) {
+  return write_png(o, [&](renderer& r, const camera& view) {
+    r.draw(stage, view, render_settings{}, o.width, o.height);
+  });
 }
 
 // The CPU path, the same for the three stages: step 0 is the initial state; after s steps
@@ -144,14 +152,14 @@ int run_headless(const options& o) {
       single_spring stage(o.spring);
       status = run_cpu(o, stage, csv, o.spring.dynamics);
       if (status == 0 && !o.png_path.empty())
-        status = write_png(o, stage);
+        status = write_cpu_png(o, stage);
       break;
     }
     case stage_kind::coupled: {
       coupled_springs stage(o.coupled);
       status = run_cpu(o, stage, csv, o.coupled.dynamics);
       if (status == 0 && !o.png_path.empty())
-        status = write_png(o, stage);
+        status = write_cpu_png(o, stage);
       break;
     }
     case stage_kind::cloth: {
@@ -168,8 +176,9 @@ int run_headless(const options& o) {
         status = 1;
         break;
       }
-      if (!o.png_path.empty())
-        status = write_png(o, cloth);
+      // (the GPU run wrote its PNG from its textures)
+      if (!o.png_path.empty() && o.backend == backend_kind::cpu)
+        status = write_cpu_png(o, cloth);
       break;
     }
   }

@@ -73,7 +73,7 @@ parse_result parse_command_line(int argc, const char* const* argv) {
 
   // Values given on the command line; defaults come from the parameter structs.
   double dt = 0, stiffness = 0, damping = 0, mass = 0, gravity = 0;
-  std::string integrator, ground_z, wind_dir;
+  std::string stage = "cloth", backend = "cpu", integrator, pin_choice, ground_z, wind_dir;
   const std::map<std::string, stage_kind> stages = {{"spring", stage_kind::spring},
                                                     {"coupled", stage_kind::coupled},
                                                     {"cloth", stage_kind::cloth}};
@@ -87,10 +87,10 @@ parse_result parse_command_line(int argc, const char* const* argv) {
 
   cloth_parameters& cloth = o.cloth;
   app.add_flag("--headless", o.headless, "Run without a window");
-  app.add_option("--stage", o.stage, "spring | coupled | cloth (default cloth)")
-      ->transform(CLI::CheckedTransformer(stages));
-  app.add_option("--backend", o.backend, "cpu | gpu: the cloth's simulation path (default cpu)")
-      ->transform(CLI::CheckedTransformer(backends));
+  app.add_option("--stage", stage, "spring | coupled | cloth (default cloth)")
+      ->check(CLI::IsMember(stages));
+  app.add_option("--backend", backend, "cpu | gpu: the cloth's simulation path (default cpu)")
+      ->check(CLI::IsMember(backends));
   app.add_option("--integrator", integrator, "semi-implicit (default) | explicit")
       ->check(CLI::IsMember(integrators));
   app.add_option("--steps", o.steps, "Steps to run, headless (default 1000)");
@@ -109,8 +109,7 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       ->capture_default_str();
   app.add_option("--N", cloth.grid_size, "Cloth grid size: N x N particles")->capture_default_str();
   app.add_option("--size", cloth.side_length, "Cloth side length, m")->capture_default_str();
-  app.add_option("--pins", cloth.pins, "corners (default) | none")
-      ->transform(CLI::CheckedTransformer(pins));
+  app.add_option("--pins", pin_choice, "corners (default) | none")->check(CLI::IsMember(pins));
   app.add_option("--wind-strength", cloth.wind_strength, "Wind strength K_w, N")
       ->capture_default_str();
   auto* wind_dir_option = app.add_option("--wind-dir", wind_dir, "Wind direction X,Y,Z (0,1,0)");
@@ -140,6 +139,10 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   }
 
   try {
+    o.stage = stages.at(stage);
+    o.backend = backends.at(backend);
+    if (!pin_choice.empty())
+      cloth.pins = pins.at(pin_choice);
     // The options every stage shares go into all three parameter structs.
     dynamics_parameters* all[] = {&o.spring.dynamics, &o.coupled.dynamics, &o.cloth.dynamics};
     for (dynamics_parameters* d : all) {

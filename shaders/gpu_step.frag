@@ -1,0 +1,87 @@
+#version 330 core
+// GPU cloth, pass 1 (questions 12 and 13): one step of shared/model.md for particle (ku, kv) =
+// this texel, in single precision. Forces from the positions and normals at the start of the
+// step, then the integrator, then the ground contact. Writes the new position and velocity.
+
+uniform sampler2D position_texture;  // xyz: p (m), w: 1 if pinned
+uniform sampler2D velocity_texture;  // xyz: v (m/s)
+uniform sampler2D normal_texture;    // xyz: n of the current positions (unit)
+uniform int grid_size;               // N
+
+uniform vec3 stiffness;    // K (N/m) of the structural, shear and bending springs
+uniform vec3 rest_length;  // L0 (m) of the structural, shear and bending springs: h, h√2, 2h
+
+uniform float time_step;  // dt, s
+uniform float damping;    // mu, 1/s
+uniform float mass;       // m, kg
+uniform float gravity;    // g0, m/s^2: g = (0, 0, -g0)
+uniform bool explicit_euler;  // false: semi-implicit (the handout's code order)
+
+uniform float wind_strength;   // K_w, N
+uniform vec3 wind_direction;   // u_w, unit
+
+uniform bool ground_enabled;
+uniform float ground_height;    // z_g, m
+uniform float ground_friction;  // mu_g, 1/s
+
+layout(location = 0) out vec4 new_position;
+layout(location = 1) out vec4 new_velocity;
+
+// The 12 particles a particle can be joined to (handout figure 6): (du, dv) and the spring family
+// (0 structural, 1 shear, 2 bending). Each texel gathers the forces of its own springs.
+const int neighbour_count = 12;
+const ivec3 neighbours[neighbour_count] = ivec3[neighbour_count](
+    ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0),       // structural, h
+    ivec3(1, 1, 1), ivec3(-1, -1, 1), ivec3(1, -1, 1), ivec3(-1, 1, 1),     // shear, h√2
+    ivec3(2, 0, 2), ivec3(-2, 0, 2), ivec3(0, 2, 2), ivec3(0, -2, 2));      // bending, 2h
+
+// Handout equation 2: the force that a spring (K, L0) between i and j exerts on i,
+// F = K (L0 - |p_i - p_j|) (p_i - p_j) / |p_i - p_j|.
+vec3 spring_force(vec3 p_i, vec3 p_j, float K, float L0) {
+  vec3 d = p_i - p_j;
+  float L = length(d);
+  return K * (L0 - L) / L * d;
+}
+
+void main() {
+  ivec2 k = ivec2(gl_FragCoord.xy);  // (ku, kv): particle ku + N kv
+  vec4 position = texelFetch(position_texture, k, 0);
+  vec3 p = position.xyz;
+  vec3 v = texelFetch(velocity_texture, k, 0).xyz;
+  bool pinned = position.w != 0.0;
+
+  if (pinned) {  // question 7: pinned particles never move and keep a zero velocity
+    new_position = position;
+    new_velocity = vec4(0.0);
+    return;
+  }
+
+  // Forces: the springs to every neighbour inside the grid, then the wind.
+  vec3 force = vec3(0.0);
+  for (int i = 0; i < neighbour_count; ++i) {
+    ivec2 j = k + neighbours[i].xy;
+    if (j.x < 0 || j.y < 0 || j.x >= grid_size || j.y >= grid_size) continue;
+    int family = neighbours[i].z;
+    vec3 p_j = texelFetch(position_texture, j, 0).xyz;
+    force += spring_force(p, p_j, stiffness[family], rest_length[family]);
+  }
+  vec3 n = texelFetch(normal_texture, k, 0).xyz;
+  force += wind_strength * dot(n, wind_direction) * n;  // question 13: F_w = K_w <n, u_w> n
+
+  // Integrator: a = F / m + g; the velocity is damped by (1 - mu dt).
+  vec3 a = force / mass + vec3(0.0, 0.0, -gravity);
+  vec3 v_new = (1.0 - damping * time_step) * v + time_step * a;
+  // semi-implicit: the position moves with the new velocity; explicit (eq. 6): with the old one.
+  vec3 p_new = p + time_step * (explicit_euler ? v : v_new);
+
+  // Question 9: the ground z = z_g puts the particle back on it, stops its fall and damps its
+  // tangential velocity by (1 - mu_g dt).
+  if (ground_enabled && p_new.z < ground_height) {
+    p_new.z = ground_height;
+    v_new.z = max(v_new.z, 0.0);
+    v_new.xy *= 1.0 - ground_friction * time_step;
+  }
+
+  new_position = vec4(p_new, 0.0);
+  new_velocity = vec4(v_new, 0.0);
+}

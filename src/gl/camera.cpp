@@ -1,0 +1,83 @@
+#include "camera.hpp"
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace clothlab {
+namespace {
+
+constexpr float max_pitch = 1.5f;     // rad: never straight above or below (lookAt needs it)
+constexpr float min_distance = 0.2f;  // m
+constexpr float max_distance = 50.0f;
+constexpr float near_plane = 0.05f;  // m
+constexpr float far_plane = 200.0f;  // m
+const glm::vec3 up = {0.0f, 0.0f, 1.0f};
+
+}  // namespace
+
+camera camera::default_for(stage_kind stage) {
+  camera view;
+  switch (stage) {
+    case stage_kind::spring:
+      // p0 = (0.1, 0, 1); the mass swings around z = 0 (its rest position is 0.99 m below p0).
+      view.target = {0.1f, 0.0f, 0.1f};
+      view.distance = 2.9f;
+      view.yaw = 0.9f;
+      view.pitch = 0.22f;
+      break;
+    case stage_kind::coupled:
+      // The default chain of two masses hangs from z = 1 to about z = -1.5 at rest; released at
+      // the springs' rest lengths, its lower mass first bounces down to about z = -3.
+      view.target = {0.1f, 0.0f, -0.95f};
+      view.distance = 5.6f;
+      view.yaw = 0.9f;
+      view.pitch = 0.2f;
+      break;
+    case stage_kind::cloth:
+      // The 1 m cloth, pinned at (+-0.5, -0.5, 0), swings down towards the ground z = -1.
+      view.target = {0.0f, -0.35f, -0.45f};
+      view.distance = 2.8f;
+      view.yaw = 0.8f;
+      view.pitch = 0.32f;
+      break;
+  }
+  return view;
+}
+
+glm::vec3 camera::eye() const {
+  const glm::vec3 direction = {std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
+                               std::sin(pitch)};
+  return target + distance * direction;
+}
+
+glm::mat4 camera::view() const {
+  return glm::lookAt(eye(), target, up);
+}
+
+glm::mat4 camera::projection(float aspect) const {
+  return glm::perspective(field_of_view, aspect > 0.0f ? aspect : 1.0f, near_plane, far_plane);
+}
+
+void camera::orbit(float delta_yaw, float delta_pitch) {
+  yaw += delta_yaw;
+  pitch = std::clamp(pitch + delta_pitch, -max_pitch, max_pitch);
+}
+
+void camera::zoom(float factor) {
+  if (!(factor > 0.0f))
+    return;
+  distance = std::clamp(distance * factor, min_distance, max_distance);
+}
+
+void camera::pan(float dx, float dy) {
+  const glm::vec3 forward = glm::normalize(target - eye());
+  const glm::vec3 right = glm::normalize(glm::cross(forward, up));
+  const glm::vec3 screen_up = glm::cross(right, forward);
+  target += distance * (dx * right + dy * screen_up);
+}
+
+}  // namespace clothlab

@@ -1,0 +1,360 @@
+#include "gpu_cloth.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace clothlab {
+namespace {
+
+// The GL state that the GPU passes change, saved on construction and restored on destruction,
+// so that the renderer's drawing around a step is not disturbed.
+class saved_gl_state {
+ public:
+  saved_gl_state() {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_framebuffer_);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer_);
+    glGetIntegerv(GL_VIEWPORT, viewport_.data());
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertex_array_);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
+    for (GLuint unit = 0; unit < texture_units; ++unit) {
+      glActiveTexture(GL_TEXTURE0 + unit);
+      glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture_[unit]);
+    }
+    glGetIntegerv(GL_POLYGON_MODE, polygon_mode_.data());
+    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pixel_pack_buffer_);
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &pixel_unpack_buffer_);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);  // glReadPixels and glTexImage2D use client memory
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    for (std::size_t i = 0; i < capabilities.size(); ++i) {
+      enabled_[i] = glIsEnabled(capabilities[i]);
+    }
+  }
+  ~saved_gl_state() {
+    for (std::size_t i = 0; i < capabilities.size(); ++i) {
+      if (enabled_[i] == GL_TRUE) {
+        glEnable(capabilities[i]);
+      } else {
+        glDisable(capabilities[i]);
+      }
+    }
+    glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pixel_pack_buffer_));
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(pixel_unpack_buffer_));
+    for (GLuint unit = 0; unit < texture_units; ++unit) {
+      glActiveTexture(GL_TEXTURE0 + unit);
+      glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture_[unit]));
+    }
+    glActiveTexture(static_cast<GLenum>(active_texture_));
+    glBindVertexArray(static_cast<GLuint>(vertex_array_));
+    glUseProgram(static_cast<GLuint>(program_));
+    glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read_framebuffer_));
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw_framebuffer_));
+  }
+  saved_gl_state(const saved_gl_state&) = delete;
+  saved_gl_state& operator=(const saved_gl_state&) = delete;
+
+  // For the passes: every fragment written as computed, no blending, culling or testing.
+  static void set_pass_state() {
+    for (GLenum capability : capabilities)
+      glDisable(capability);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+
+  static constexpr GLuint texture_units = 3;  // the passes read at most three textures
+
+ private:
+  static constexpr std::array<GLenum, 5> capabilities = {GL_BLEND, GL_CULL_FACE, GL_DEPTH_TEST,
+                                                         GL_SCISSOR_TEST, GL_STENCIL_TEST};
+  GLint draw_framebuffer_ = 0;
+  GLint read_framebuffer_ = 0;
+  std::array<GLint, 4> viewport_{};
+  GLint program_ = 0;
+  GLint vertex_array_ = 0;
+  GLint active_texture_ = GL_TEXTURE0;
+  std::array<GLint, texture_units> texture_{};
+  std::array<GLint, 2> polygon_mode_{GL_FILL, GL_FILL};
+  GLint pixel_pack_buffer_ = 0;
+  GLint pixel_unpack_buffer_ = 0;
+  std::array<GLboolean, capabilities.size()> enabled_{};
+};
+
+// An N x N GL_RGBA32F texture holding `texels` (4 floats per texel, texel (ku, kv) at
+// 4 (ku + N kv)), read with texelFetch: nearest filtering, no mipmaps.
+GLuint create_state_texture(int n, const std::vector<float>& texels) {
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, n, 0, GL_RGBA, GL_FLOAT, texels.data());
+  return texture;
+}
+
+// A framebuffer rendering into `targets` (attachment i = targets[i]); 0 and an error if the
+// driver cannot render into them.
+GLuint create_framebuffer(std::initializer_list<GLuint> targets, std::string& error) {
+  GLuint framebuffer = 0;
+  glGenFramebuffers(1, &framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  std::vector<GLenum> draw_buffers;
+  for (GLuint texture : targets) {
+    const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(draw_buffers.size());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, attachment, GL_TEXTURE_2D, texture, 0);
+    draw_buffers.push_back(attachment);
+  }
+  glDrawBuffers(static_cast<GLsizei>(draw_buffers.size()), draw_buffers.data());
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    char status_hex[16];
+    std::snprintf(status_hex, sizeof status_hex, "0x%04X", status);
+    error =
+        "the GPU cloth needs to render into GL_RGBA32F textures, which this OpenGL driver "
+        "refuses (framebuffer status " +
+        std::string(status_hex) + ")";
+    glDeleteFramebuffers(1, &framebuffer);
+    return 0;
+  }
+  return framebuffer;
+}
+
+void bind_texture(GLuint unit, GLuint texture) {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_2D, texture);
+}
+
+// Runs the bound program once per texel of the bound N x N framebuffer.
+void draw_full_screen_pass(int n) {
+  glViewport(0, 0, n, n);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+}  // namespace
+
+gpu_cloth::~gpu_cloth() {
+  release();
+  if (empty_vertex_array_ != 0)
+    glDeleteVertexArrays(1, &empty_vertex_array_);
+}
+
+void gpu_cloth::release() {
+  grid_size_ = 0;
+  if (position_[0] == 0)
+    return;  // nothing created (load creates the textures first)
+  glDeleteFramebuffers(2, framebuffer_.data());
+  glDeleteFramebuffers(1, &normal_framebuffer_);
+  glDeleteTextures(2, position_.data());
+  glDeleteTextures(2, velocity_.data());
+  glDeleteTextures(1, &normal_);
+  framebuffer_ = {};
+  position_ = {};
+  velocity_ = {};
+  normal_framebuffer_ = 0;
+  normal_ = 0;
+}
+
+bool gpu_cloth::check_grid_size(int grid_size, std::string& error) {
+  GLint max_texture_size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_size);
+  std::array<GLint, 2> max_viewport{};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport.data());
+  const std::string n = "grid size N=" + std::to_string(grid_size);
+  if (grid_size < 2) {
+    error = n + ": must be at least 2";
+    return false;
+  }
+  if (grid_size > max_texture_size) {
+    error = n + ": too large for the GPU cloth, whose N x N textures are limited to " +
+            std::to_string(max_texture_size) + " texels a side here (GL_MAX_TEXTURE_SIZE)";
+    return false;
+  }
+  if (grid_size > max_viewport[0] || grid_size > max_viewport[1]) {
+    error = n + ": too large for the GPU cloth, whose N x N passes are limited to " +
+            std::to_string(max_viewport[0]) + " x " + std::to_string(max_viewport[1]) +
+            " pixels here (GL_MAX_VIEWPORT_DIMS)";
+    return false;
+  }
+  return true;
+}
+
+bool gpu_cloth::supports_integrator(integrator_kind integrator, std::string& error) {
+  if (integrator == integrator_kind::semi_implicit ||
+      integrator == integrator_kind::explicit_euler) {
+    return true;
+  }
+  error = "integrator " + std::string(integrator_name(integrator)) +
+          ": the GPU path runs semi-implicit or explicit only";
+  return false;
+}
+
+bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
+  release();
+  const int n = cloth.grid_size();
+  if (!check_grid_size(n, error))
+    return false;
+  if (step_program_.id() == 0 &&
+      !step_program_.load("gpu_full_screen.vert", "gpu_step.frag", error)) {
+    return false;
+  }
+  if (normal_program_.id() == 0 &&
+      !normal_program_.load("gpu_full_screen.vert", "gpu_normal.frag", error)) {
+    return false;
+  }
+  if (empty_vertex_array_ == 0)
+    glGenVertexArrays(1, &empty_vertex_array_);
+
+  // Rest lengths, one per family, from the CPU's springs: all springs of a family share it
+  // (h, h√2, 2h with h = S / (N - 1)). N = 2 has no bending spring: none of its texels uses 2h.
+  const auto first_rest_length = [&](spring_family family, double if_none) {
+    const auto springs = cloth.springs(family);
+    return springs.empty() ? if_none : springs.front().rest_length;
+  };
+  const double h = first_rest_length(spring_family::structural, 0.0);
+  rest_length_ = {static_cast<float>(h),
+                  static_cast<float>(first_rest_length(spring_family::shear, h * std::sqrt(2.0))),
+                  static_cast<float>(first_rest_length(spring_family::bending, 2.0 * h))};
+
+  // The CPU state as texels: texel (ku, kv) = particle k = ku + N kv, 4 floats each.
+  const particle_system& particles = cloth.particles();
+  const std::size_t count = particles.size();
+  std::vector<float> positions(4 * count);
+  std::vector<float> velocities(4 * count);
+  for (std::size_t k = 0; k < count; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      positions[4 * k + c] = static_cast<float>(particles.position[3 * k + c]);
+      velocities[4 * k + c] = static_cast<float>(particles.velocity[3 * k + c]);
+    }
+    positions[4 * k + 3] = particles.is_fixed[k] ? 1.0f : 0.0f;  // w: pinned
+    velocities[4 * k + 3] = 0.0f;
+  }
+
+  saved_gl_state saved;
+  for (std::size_t copy = 0; copy < 2; ++copy) {
+    position_[copy] = create_state_texture(n, positions);
+    velocity_[copy] = create_state_texture(n, velocities);
+  }
+  normal_ = create_state_texture(n, std::vector<float>(4 * count, 0.0f));
+  for (std::size_t copy = 0; copy < 2; ++copy) {
+    framebuffer_[copy] = create_framebuffer({position_[copy], velocity_[copy]}, error);
+    if (framebuffer_[copy] == 0) {
+      release();
+      return false;
+    }
+  }
+  normal_framebuffer_ = create_framebuffer({normal_}, error);
+  if (normal_framebuffer_ == 0) {
+    release();
+    return false;
+  }
+  read_ = 0;
+  write_ = 1;
+  grid_size_ = n;
+  compute_normals();
+  return true;
+}
+
+void gpu_cloth::compute_normals() {
+  glBindFramebuffer(GL_FRAMEBUFFER, normal_framebuffer_);
+  normal_program_.use();
+  bind_texture(0, position_[read_]);
+  glUniform1i(normal_program_.uniform("position_texture"), 0);
+  glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
+  glBindVertexArray(empty_vertex_array_);
+  saved_gl_state::set_pass_state();
+  draw_full_screen_pass(grid_size_);
+}
+
+void gpu_cloth::step(const cloth_parameters& p) {
+  if (!is_loaded())
+    throw std::logic_error("gpu_cloth::step called before a successful load");
+  if (std::string error; !supports_integrator(p.dynamics.integrator, error))
+    throw std::invalid_argument("gpu_cloth::step: " + error);
+  saved_gl_state saved;
+  saved_gl_state::set_pass_state();
+  glBindVertexArray(empty_vertex_array_);
+
+  // Pass 1: forces, integrator and ground, from copy read_ into copy write_.
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_[write_]);
+  step_program_.use();
+  const auto uniform = [&](const char* name) { return step_program_.uniform(name); };
+  bind_texture(0, position_[read_]);
+  bind_texture(1, velocity_[read_]);
+  bind_texture(2, normal_);  // the normals of the positions at the start of the step
+  glUniform1i(uniform("position_texture"), 0);
+  glUniform1i(uniform("velocity_texture"), 1);
+  glUniform1i(uniform("normal_texture"), 2);
+  glUniform1i(uniform("grid_size"), grid_size_);
+  glUniform3f(uniform("stiffness"), static_cast<float>(p.structural_stiffness),
+              static_cast<float>(p.shear_stiffness), static_cast<float>(p.bending_stiffness));
+  glUniform3f(uniform("rest_length"), rest_length_[0], rest_length_[1], rest_length_[2]);
+  const dynamics_parameters& d = p.dynamics;
+  glUniform1f(uniform("time_step"), static_cast<float>(d.time_step));
+  glUniform1f(uniform("damping"), static_cast<float>(d.damping));
+  glUniform1f(uniform("mass"), static_cast<float>(d.mass));
+  glUniform1f(uniform("gravity"), static_cast<float>(d.gravity));
+  glUniform1i(uniform("explicit_euler"), d.integrator == integrator_kind::explicit_euler);
+  // u_w, unit. K_w = 0 means no wind at all, as on the CPU, whatever u_w (even a zero one).
+  const glm::dvec3 wind_unit =
+      p.wind_strength != 0.0 ? p.wind_direction / glm::length(p.wind_direction) : glm::dvec3(0.0);
+  glUniform1f(uniform("wind_strength"), static_cast<float>(p.wind_strength));
+  glUniform3f(uniform("wind_direction"), static_cast<float>(wind_unit.x),
+              static_cast<float>(wind_unit.y), static_cast<float>(wind_unit.z));
+  glUniform1i(uniform("ground_enabled"), p.ground_enabled);
+  glUniform1f(uniform("ground_height"), static_cast<float>(p.ground_height));
+  glUniform1f(uniform("ground_friction"), static_cast<float>(p.ground_friction));
+  draw_full_screen_pass(grid_size_);
+
+  // Ping-pong: the copy just written becomes the current state, the old one the next target.
+  std::swap(read_, write_);
+
+  // Pass 2: the normals of the new positions, for the renderer and the next step's wind.
+  compute_normals();
+}
+
+double gpu_cloth::time_steps(const cloth_parameters& p, int count) {
+  if (count < 1)
+    return 0.0;
+  glFinish();
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < count; ++i)
+    step(p);
+  glFinish();
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  return elapsed.count() / count;
+}
+
+void gpu_cloth::read_state(spring_mesh& cloth) const {
+  if (!is_loaded())
+    throw std::logic_error("gpu_cloth::read_state called before a successful load");
+  if (cloth.grid_size() != grid_size_) {
+    throw std::invalid_argument(
+        "gpu_cloth::read_state: the CPU cloth has N=" + std::to_string(cloth.grid_size()) +
+        ", the GPU cloth N=" + std::to_string(grid_size_));
+  }
+  saved_gl_state saved;
+  const std::size_t count = static_cast<std::size_t>(grid_size_) * grid_size_;
+  std::vector<float> texels(4 * count);
+  particle_system& particles = cloth.particles();
+  const auto read_attachment = [&](GLenum attachment, std::vector<double>& into) {
+    glReadBuffer(attachment);
+    glReadPixels(0, 0, grid_size_, grid_size_, GL_RGBA, GL_FLOAT, texels.data());
+    for (std::size_t k = 0; k < count; ++k) {
+      for (std::size_t c = 0; c < 3; ++c)
+        into[3 * k + c] = texels[4 * k + c];
+    }
+  };
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_[read_]);
+  read_attachment(GL_COLOR_ATTACHMENT0, particles.position);
+  read_attachment(GL_COLOR_ATTACHMENT1, particles.velocity);
+  cloth.compute_normals();
+}
+
+}  // namespace clothlab

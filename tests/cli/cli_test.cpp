@@ -1,0 +1,633 @@
+// The clothlab executable run as a subprocess, against shared/cli.md: help and version, every
+// option, the CSV format (checked against a hand computation), bad usage (exit 2), divergence
+// (exit 3), unwritable files (exit 1) and the OBJ. Each run happens in its own empty directory.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef CLOTHLAB_EXECUTABLE
+#error "CLOTHLAB_EXECUTABLE must be the path of the clothlab executable"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+using arguments = std::vector<std::string>;
+
+struct run_result {
+  int exit_code = -1;  // 128 + signal when killed by a signal
+  std::string out;
+  std::string err;
+};
+
+std::string read_file(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+std::string join(const arguments& args) {
+  std::string line = "clothlab";
+  for (const std::string& arg : args) {
+    line += " " + arg;
+  }
+  return line;
+}
+
+// A fresh directory per test: clothlab runs in <root>/work (which must otherwise stay empty when
+// it writes nothing); its standard output and error go to files beside it.
+class cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "clothlab-cli-XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    root_ = pattern;
+    fs::create_directory(work());
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(root_, ignored);
+  }
+
+  fs::path work() const { return root_ / "work"; }
+
+  // without_display: DISPLAY and WAYLAND_DISPLAY removed from clothlab's environment.
+  run_result run(const arguments& args, bool without_display = false) const {
+    const fs::path out_path = root_ / "stdout.txt";
+    const fs::path err_path = root_ / "stderr.txt";
+    std::vector<char*> argv;
+    std::string program = CLOTHLAB_EXECUTABLE;
+    argv.push_back(program.data());
+    std::vector<std::string> copies = args;
+    for (std::string& arg : copies) {
+      argv.push_back(arg.data());
+    }
+    argv.push_back(nullptr);
+
+    const pid_t child = fork();
+    if (child == 0) {
+      const int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int err = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (out < 0 || err < 0 || chdir(work().c_str()) != 0 || dup2(out, 1) < 0 ||
+          dup2(err, 2) < 0) {
+        _exit(126);
+      }
+      if (without_display) {
+        unsetenv("DISPLAY");
+        unsetenv("WAYLAND_DISPLAY");
+      }
+      alarm(60);  // a run that hangs is killed (SIGALRM: exit code 128 + 14)
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+    run_result result;
+    int status = 0;
+    if (child < 0 || waitpid(child, &status, 0) != child) {
+      return result;
+    }
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    result.out = read_file(out_path);
+    result.err = read_file(err_path);
+    return result;
+  }
+
+ private:
+  fs::path root_;
+};
+
+bool has_option(const arguments& args, const std::string& option) {
+  return std::find(args.begin(), args.end(), option) != args.end();
+}
+
+// --headless, and small values for the options that the case does not set itself.
+arguments headless_run(const arguments& extra) {
+  arguments args = {"--headless"};
+  if (!has_option(extra, "--steps")) {
+    args.insert(args.end(), {"--steps", "2"});
+  }
+  if (!has_option(extra, "--N")) {
+    args.insert(args.end(), {"--N", "4"});
+  }
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+std::size_t count_lines(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// One CSV line of cli.md: step,t,particle,x,y,z,vx,vy,vz.
+struct csv_row {
+  long step = 0;
+  double t = 0;
+  long particle = 0;
+  double value[6] = {};  // x, y, z, vx, vy, vz
+};
+
+struct csv_file {
+  std::string header;
+  std::vector<csv_row> rows;
+};
+
+// Parses the file; fails the calling test (through ADD_FAILURE) on a malformed line.
+csv_file read_csv(const fs::path& path) {
+  csv_file csv;
+  std::ifstream file(path);
+  std::getline(file, csv.header);
+  std::string line;
+  while (std::getline(file, line)) {
+    std::vector<std::string> fields;
+    std::stringstream stream(line);
+    std::string field;
+    while (std::getline(stream, field, ',')) {
+      fields.push_back(field);
+    }
+    if (fields.size() != 9) {
+      ADD_FAILURE() << "CSV line without 9 fields: " << line;
+      continue;
+    }
+    csv_row row;
+    char* end = nullptr;
+    row.step = std::strtol(fields[0].c_str(), &end, 10);
+    EXPECT_EQ(*end, '\0') << line;
+    row.t = std::strtod(fields[1].c_str(), &end);
+    EXPECT_EQ(*end, '\0') << line;
+    row.particle = std::strtol(fields[2].c_str(), &end, 10);
+    EXPECT_EQ(*end, '\0') << line;
+    for (std::size_t c = 0; c < 6; ++c) {
+      row.value[c] = std::strtod(fields[3 + c].c_str(), &end);
+      EXPECT_EQ(*end, '\0') << line;
+    }
+    csv.rows.push_back(row);
+  }
+  return csv;
+}
+
+// The steps present in the CSV, each with its particles listed exactly once in index order.
+std::vector<long> written_steps(const csv_file& csv, long particle_count) {
+  std::vector<long> steps;
+  for (std::size_t i = 0; i < csv.rows.size(); ++i) {
+    const long expected_particle = static_cast<long>(i) % particle_count;
+    EXPECT_EQ(csv.rows[i].particle, expected_particle) << "row " << i;
+    if (expected_particle == 0) {
+      steps.push_back(csv.rows[i].step);
+    } else {
+      EXPECT_EQ(csv.rows[i].step, steps.back()) << "row " << i;
+    }
+  }
+  EXPECT_EQ(csv.rows.size() % static_cast<std::size_t>(particle_count), 0u);
+  return steps;
+}
+
+constexpr const char* csv_header = "step,t,particle,x,y,z,vx,vy,vz";
+
+TEST_F(cli, HelpPrintsTheOptionsAndExitsZero) {
+  const run_result result = run({"--help"});
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("--headless"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("--csv"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("--stage"), std::string::npos) << result.out;
+}
+
+TEST_F(cli, VersionPrintsAndExitsZero) {
+  const run_result result = run({"--version"});
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find('.'), std::string::npos) << result.out;
+}
+
+// Every option of cli.md is accepted with a valid value (one short headless run per option), and
+// the files asked for are written.
+class cli_accepts : public cli, public ::testing::WithParamInterface<arguments> {};
+
+TEST_P(cli_accepts, ValidValue) {
+  const arguments args = headless_run(GetParam());
+  const run_result result = run(args);
+  ASSERT_EQ(result.exit_code, 0) << join(args) << "\nstderr: " << result.err;
+  for (const char* option : {"--csv", "--obj", "--png"}) {
+    const auto at = std::find(args.begin(), args.end(), option);
+    if (at != args.end()) {
+      const fs::path written = work() / *(at + 1);
+      ASSERT_TRUE(fs::exists(written)) << join(args) << ": " << written << " missing";
+      EXPECT_GT(fs::file_size(written), 0u) << join(args);
+      if (std::string(option) == "--png") {
+        EXPECT_EQ(read_file(written).substr(0, 8), "\x89PNG\r\n\x1a\n") << join(args);
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryOption, cli_accepts,
+    ::testing::Values(
+        arguments{"--stage", "spring"}, arguments{"--stage", "coupled"},
+        arguments{"--stage", "cloth"}, arguments{"--backend", "cpu"}, arguments{"--backend", "gpu"},
+        arguments{"--integrator", "semi-implicit"}, arguments{"--integrator", "explicit"},
+        arguments{"--steps", "3"}, arguments{"--dt", "0.001"},
+        arguments{"--stage", "spring", "--K", "30"}, arguments{"--stage", "coupled", "--K", "30"},
+        arguments{"--K-struct", "4000"}, arguments{"--K-shear", "1500"},
+        arguments{"--K-bend", "300"}, arguments{"--mu", "0.1"}, arguments{"--mass", "2"},
+        arguments{"--gravity", "5"}, arguments{"--stage", "coupled", "--chain", "4"},
+        arguments{"--N", "6"}, arguments{"--size", "2"}, arguments{"--pins", "corners"},
+        arguments{"--pins", "none"}, arguments{"--wind-strength", "3"},
+        arguments{"--wind-dir", "1,0,0.5"}, arguments{"--ground-z", "-0.5"},
+        arguments{"--ground-z", "none"}, arguments{"--ground-friction", "1"},
+        arguments{"--csv", "out.csv"}, arguments{"--csv", "out.csv", "--csv-every", "2"},
+        arguments{"--obj", "out.obj"},
+        arguments{"--png", "out.png", "--width", "64", "--height", "48"},
+        arguments{"--backend", "gpu", "--png", "out.png", "--width", "32", "--height", "32"}),
+    [](const ::testing::TestParamInfo<arguments>& param_info) {
+      // "--wind-dir 1,0,0.5" -> "wind_dir_1_0_0_5"
+      std::string name;
+      for (const std::string& arg : param_info.param) {
+        for (const char c : arg) {
+          const bool alphanumeric = std::isalnum(static_cast<unsigned char>(c)) != 0;
+          if (alphanumeric) {
+            name += c;
+          } else if (!name.empty() && name.back() != '_') {
+            name += '_';
+          }
+        }
+        if (!name.empty() && name.back() != '_') {
+          name += '_';
+        }
+      }
+      name.pop_back();
+      return name;
+    });
+
+// Single spring with the defaults (dt = 0.01, mu = 0.2, g0 = 9.8, K = 20, m = 1), one step.
+// Step 0 is the initial state of model.md; at step 1 the spring is still at rest length, so
+//   v1 = (1, -1, 0)(1 - 0.2 * 0.01) + 0.01 (0, 0, -9.8) = (0.998, -0.998, -0.098)
+//   p1 = (0.1, 0, 0.5) + 0.01 v1 = (0.10998, -0.00998, 0.49902)
+TEST_F(cli, SingleSpringCsvHoldsTheInitialStateAndTheHandComputedFirstStep) {
+  const run_result result =
+      run({"--headless", "--stage", "spring", "--steps", "1", "--csv", "spring.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::string text = read_file(work() / "spring.csv");
+  EXPECT_EQ(count_lines(text), 5u) << text;
+  const csv_file csv = read_csv(work() / "spring.csv");
+  EXPECT_EQ(csv.header, csv_header);
+  ASSERT_EQ(csv.rows.size(), 4u);
+  const double expected[4][6] = {{0.1, 0.0, 1.0, 0.0, 0.0, 0.0},
+                                 {0.1, 0.0, 0.5, 1.0, -1.0, 0.0},
+                                 {0.1, 0.0, 1.0, 0.0, 0.0, 0.0},
+                                 {0.10998, -0.00998, 0.49902, 0.998, -0.998, -0.098}};
+  for (std::size_t r = 0; r < 4; ++r) {
+    EXPECT_EQ(csv.rows[r].step, r < 2 ? 0 : 1);
+    EXPECT_EQ(csv.rows[r].t, r < 2 ? 0.0 : 0.01);
+    EXPECT_EQ(csv.rows[r].particle, static_cast<long>(r % 2));
+    for (std::size_t c = 0; c < 6; ++c) {
+      EXPECT_NEAR(csv.rows[r].value[c], expected[r][c], 1e-15) << "row " << r << ", field " << c;
+    }
+  }
+}
+
+// --csv-every 3 over 10 steps writes steps 0, 3, 6, 9 and the last one, 10; t = step * dt.
+TEST_F(cli, CsvEveryWritesEveryKthStepPlusTheFirstAndTheLast) {
+  const run_result result = run({"--headless", "--stage", "coupled", "--chain", "2", "--dt",
+                                 "0.005", "--steps", "10", "--csv-every", "3", "--csv", "c.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const csv_file csv = read_csv(work() / "c.csv");
+  EXPECT_EQ(csv.header, csv_header);
+  EXPECT_EQ(written_steps(csv, 3), (std::vector<long>{0, 3, 6, 9, 10}));
+  for (const csv_row& row : csv.rows) {
+    EXPECT_DOUBLE_EQ(row.t, static_cast<double>(row.step) * 0.005) << "step " << row.step;
+  }
+}
+
+// When the last step is itself a multiple of K it is written once.
+TEST_F(cli, CsvEveryWritesALastStepThatIsAMultipleOfKOnce) {
+  const run_result result = run(
+      {"--headless", "--stage", "spring", "--steps", "9", "--csv-every", "3", "--csv", "s.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(written_steps(read_csv(work() / "s.csv"), 2), (std::vector<long>{0, 3, 6, 9}));
+}
+
+// Cloth N = 3, S = 1 (h = 0.5), pinned corners 0 and 2. Step 0: p(ku, kv) = (-0.5 + 0.5 ku,
+// -0.5 + 0.5 kv, 0) at rest. Step 1 (dt = 0.002, springs at rest length, so gravity alone):
+// free particles have v = (0, 0, -9.8 * 0.002) = (0, 0, -0.0196), pinned ones stay at rest.
+TEST_F(cli, ClothCsvListsEveryParticleInIndexOrder) {
+  const run_result result =
+      run({"--headless", "--stage", "cloth", "--N", "3", "--steps", "1", "--csv", "cloth.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const csv_file csv = read_csv(work() / "cloth.csv");
+  EXPECT_EQ(csv.header, csv_header);
+  ASSERT_EQ(written_steps(csv, 9), (std::vector<long>{0, 1}));
+  for (std::size_t k = 0; k < 9; ++k) {
+    const csv_row& initial = csv.rows[k];
+    EXPECT_DOUBLE_EQ(initial.value[0], -0.5 + 0.5 * static_cast<double>(k % 3)) << k;
+    EXPECT_DOUBLE_EQ(initial.value[1], -0.5 + 0.5 * static_cast<double>(k / 3)) << k;
+    EXPECT_EQ(initial.value[2], 0.0) << k;
+    const csv_row& first = csv.rows[9 + k];
+    const bool pinned = k == 0 || k == 2;
+    EXPECT_EQ(first.value[3], 0.0) << k;
+    EXPECT_EQ(first.value[4], 0.0) << k;
+    EXPECT_NEAR(first.value[5], pinned ? 0.0 : -0.0196, 1e-15) << k;
+  }
+}
+
+// The options reach the physics: each run below is checked against its first step(s) by hand.
+
+// Single spring, --integrator explicit: p1 = (0.1, 0, 0.5) + 0.01 (1, -1, 0) = (0.11, -0.01, 0.5)
+// (the old velocity), v1 as in the semi-implicit case, (0.998, -0.998, -0.098).
+TEST_F(cli, IntegratorOptionSelectsTheScheme) {
+  const run_result result = run({"--headless", "--stage", "spring", "--integrator", "explicit",
+                                 "--steps", "1", "--csv", "s.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const csv_file csv = read_csv(work() / "s.csv");
+  ASSERT_EQ(csv.rows.size(), 4u);
+  const double expected[6] = {0.11, -0.01, 0.5, 0.998, -0.998, -0.098};
+  for (std::size_t c = 0; c < 6; ++c) {
+    EXPECT_NEAR(csv.rows[3].value[c], expected[c], 1e-15) << "field " << c;
+  }
+}
+
+// Single spring, --dt 0.02 --mu 0.5 --gravity 5, first step (spring at rest length):
+//   v1 = (1, -1, 0)(1 - 0.5 * 0.02) + 0.02 (0, 0, -5) = (0.99, -0.99, -0.1)
+//   p1 = (0.1, 0, 0.5) + 0.02 v1 = (0.1198, -0.0198, 0.498), at t = 0.02.
+TEST_F(cli, TimeStepDampingAndGravityOptionsReachTheSpring) {
+  const run_result result = run({"--headless", "--stage", "spring", "--dt", "0.02", "--mu", "0.5",
+                                 "--gravity", "5", "--steps", "1", "--csv", "s.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const csv_file csv = read_csv(work() / "s.csv");
+  ASSERT_EQ(csv.rows.size(), 4u);
+  EXPECT_EQ(csv.rows[3].t, 0.02);
+  const double expected[6] = {0.1198, -0.0198, 0.498, 0.99, -0.99, -0.1};
+  for (std::size_t c = 0; c < 6; ++c) {
+    EXPECT_NEAR(csv.rows[3].value[c], expected[c], 1e-15) << "field " << c;
+  }
+}
+
+// Single spring, --K 50 --mass 0.5, second step (defaults dt = 0.01, mu = 0.2, g0 = 9.8). After
+// the first step p1 = (0.10998, -0.00998, 0.49902), v1 = (0.998, -0.998, -0.098) (see above);
+// then with d = p1 - p0 the spring force is F = K (0.5 - |d|) d / |d| (handout equation 2) and
+//   v2 = v1 (1 - mu dt) + dt (F / m + g),   p2 = p1 + dt v2.
+TEST_F(cli, StiffnessAndMassOptionsReachTheSpring) {
+  const run_result result = run({"--headless", "--stage", "spring", "--K", "50", "--mass", "0.5",
+                                 "--steps", "2", "--csv", "s.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const csv_file csv = read_csv(work() / "s.csv");
+  ASSERT_EQ(csv.rows.size(), 6u);
+  const double p1[3] = {0.10998, -0.00998, 0.49902};
+  const double v1[3] = {0.998, -0.998, -0.098};
+  const double d[3] = {p1[0] - 0.1, p1[1], p1[2] - 1.0};
+  const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  const double g[3] = {0.0, 0.0, -9.8};
+  for (std::size_t c = 0; c < 3; ++c) {
+    const double force = 50.0 * (0.5 - length) / length * d[c];
+    const double v2 = v1[c] * (1.0 - 0.2 * 0.01) + 0.01 * (force / 0.5 + g[c]);
+    EXPECT_NEAR(csv.rows[5].value[3 + c], v2, 1e-14) << "v, c = " << c;
+    EXPECT_NEAR(csv.rows[5].value[c], p1[c] + 0.01 * v2, 1e-14) << "p, c = " << c;
+  }
+}
+
+// --chain 3: particle 0 (fixed) then 3 masses at p0 + i (0, 0, -0.5), the last one moving.
+TEST_F(cli, ChainOptionSetsTheNumberOfMasses) {
+  const run_result result =
+      run({"--headless", "--stage", "coupled", "--chain", "3", "--steps", "1", "--csv", "c.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const csv_file csv = read_csv(work() / "c.csv");
+  ASSERT_EQ(written_steps(csv, 4), (std::vector<long>{0, 1}));
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(csv.rows[i].value[0], 0.1) << i;
+    EXPECT_EQ(csv.rows[i].value[2], 1.0 - 0.5 * static_cast<double>(i)) << i;
+    EXPECT_EQ(csv.rows[i].value[3], i == 3 ? 1.0 : 0.0) << i;
+  }
+}
+
+// --N 3 --size 2 --pins none --gravity 4 --dt 0.001: step 0 at p = (-1 + ku, -1 + kv, 0) (h = 1);
+// at step 1 every particle (the corners too) has v = (0, 0, -4 * 0.001) = (0, 0, -0.004).
+TEST_F(cli, GridSizePinsAndGravityOptionsReachTheCloth) {
+  const run_result result =
+      run({"--headless", "--stage", "cloth", "--N", "3", "--size", "2", "--pins", "none",
+           "--gravity", "4", "--dt", "0.001", "--steps", "1", "--csv", "cloth.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const csv_file csv = read_csv(work() / "cloth.csv");
+  ASSERT_EQ(written_steps(csv, 9), (std::vector<long>{0, 1}));
+  for (std::size_t k = 0; k < 9; ++k) {
+    EXPECT_DOUBLE_EQ(csv.rows[k].value[0], -1.0 + static_cast<double>(k % 3)) << k;
+    EXPECT_DOUBLE_EQ(csv.rows[k].value[1], -1.0 + static_cast<double>(k / 3)) << k;
+    EXPECT_NEAR(csv.rows[9 + k].value[5], -0.004, 1e-15) << k;
+  }
+}
+
+// --wind-strength 3 --wind-dir 0,3,4 on the flat cloth (n = (0, 0, 1), u_w = (0, 0.6, 0.8)),
+// without gravity, damping or pins, dt = 0.01: F = 3 * 0.8 * (0, 0, 1) = (0, 0, 2.4) N on each
+// unit mass, so at step 1 v = (0, 0, 0.024) everywhere.
+TEST_F(cli, WindOptionsReachTheCloth) {
+  const run_result result =
+      run({"--headless", "--stage",    "cloth", "--N",     "3",    "--pins", "none",
+           "--gravity",  "0",          "--mu",  "0",       "--dt", "0.01",   "--wind-strength",
+           "3",          "--wind-dir", "0,3,4", "--steps", "1",    "--csv",  "cloth.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const csv_file csv = read_csv(work() / "cloth.csv");
+  ASSERT_EQ(written_steps(csv, 9), (std::vector<long>{0, 1}));
+  for (std::size_t k = 9; k < 18; ++k) {
+    EXPECT_NEAR(csv.rows[k].value[3], 0.0, 1e-12) << k;
+    EXPECT_NEAR(csv.rows[k].value[4], 0.0, 1e-12) << k;
+    EXPECT_NEAR(csv.rows[k].value[5], 0.024, 1e-12) << k;
+  }
+}
+
+// --ground-z -1e-5 just under the cloth, --pins none, dt = 0.002: after the integrator a free
+// particle is at z = -9.8 * 0.002^2 = -3.92e-5 < -1e-5, so the contact puts it back at z = -1e-5
+// with v_z = max(-0.0196, 0) = 0.
+TEST_F(cli, GroundHeightOptionReachesTheCloth) {
+  const run_result result =
+      run({"--headless", "--stage", "cloth", "--N", "3", "--pins", "none", "--ground-z", "-1e-5",
+           "--ground-friction", "5", "--steps", "1", "--csv", "cloth.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const csv_file csv = read_csv(work() / "cloth.csv");
+  ASSERT_EQ(written_steps(csv, 9), (std::vector<long>{0, 1}));
+  for (std::size_t k = 9; k < 18; ++k) {
+    EXPECT_EQ(csv.rows[k].value[2], -1e-5) << k;
+    EXPECT_EQ(csv.rows[k].value[5], 0.0) << k;
+  }
+}
+
+// Without the ground a free cloth falls through z = -1 in 0.6 s; with the default ground it
+// stops on it.
+TEST_F(cli, GroundZNoneRemovesTheGround) {
+  const auto fall = [](const std::string& csv, const arguments& extra) {
+    arguments args = {"--headless", "--stage", "cloth", "--N", "4",           "--pins", "none",
+                      "--steps",    "300",     "--csv", csv,   "--csv-every", "300"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  ASSERT_EQ(run(fall("without.csv", {"--ground-z", "none"})).exit_code, 0);
+  ASSERT_EQ(run(fall("with.csv", {})).exit_code, 0);
+  const csv_file fallen = read_csv(work() / "without.csv");
+  const csv_file landed = read_csv(work() / "with.csv");
+  ASSERT_EQ(fallen.rows.size(), 32u);
+  ASSERT_EQ(landed.rows.size(), 32u);
+  for (std::size_t k = 16; k < 32; ++k) {
+    EXPECT_LT(fallen.rows[k].value[2], -1.0) << k;
+    EXPECT_GE(landed.rows[k].value[2], -1.0) << k;
+  }
+}
+
+// Bad usage: exit 2, exactly one line on stderr naming the option, nothing written.
+struct bad_usage {
+  std::string label;
+  arguments args;
+  std::string option;  // what the error line must name
+};
+
+void PrintTo(const bad_usage& c, std::ostream* os) {
+  *os << c.label;
+}
+
+class cli_refuses : public cli, public ::testing::WithParamInterface<bad_usage> {};
+
+TEST_P(cli_refuses, BadUsage) {
+  arguments args = {"--headless", "--csv", "out.csv", "--obj", "out.obj"};
+  const arguments with_defaults = headless_run(GetParam().args);
+  args.insert(args.end(), with_defaults.begin() + 1, with_defaults.end());
+  const run_result result = run(args);
+  EXPECT_EQ(result.exit_code, 2) << join(args) << "\nstderr: " << result.err;
+  EXPECT_EQ(count_lines(result.err), 1u) << join(args) << "\nstderr: " << result.err;
+  EXPECT_FALSE(result.err.empty() || result.err.back() != '\n') << result.err;
+  EXPECT_NE(result.err.find(GetParam().option), std::string::npos)
+      << join(args) << "\nstderr does not name " << GetParam().option << ": " << result.err;
+  EXPECT_TRUE(result.out.empty()) << result.out;
+  EXPECT_TRUE(fs::is_empty(work())) << join(args) << " wrote a file";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryKindOfBadInput, cli_refuses,
+    ::testing::Values(bad_usage{"UnknownOption", {"--frobnicate", "3"}, "--frobnicate"},
+                      bad_usage{"MissingValue", {"--dt"}, "--dt"},
+                      bad_usage{"MalformedNumber", {"--dt", "abc"}, "--dt"},
+                      bad_usage{"TrailingGarbage", {"--dt", "0.01x"}, "--dt"},
+                      bad_usage{"NonIntegerGridSize", {"--N", "2.5"}, "--N"},
+                      bad_usage{"ZeroTimeStep", {"--dt", "0"}, "--dt"},
+                      bad_usage{"NegativeTimeStep", {"--dt", "-1"}, "--dt"},
+                      bad_usage{"GridOfOne", {"--N", "1"}, "--N"},
+                      bad_usage{"NegativeSteps", {"--steps", "-5"}, "--steps"},
+                      bad_usage{"ZeroMass", {"--mass", "0"}, "--mass"},
+                      bad_usage{"NegativeMass", {"--mass", "-1"}, "--mass"},
+                      bad_usage{"ZeroCsvEvery", {"--csv-every", "0"}, "--csv-every"},
+                      bad_usage{"EmptyChain", {"--stage", "coupled", "--chain", "0"}, "--chain"},
+                      bad_usage{"ZeroWindDirection", {"--wind-dir", "0,0,0"}, "--wind-dir"},
+                      bad_usage{"TwoComponentWindDirection", {"--wind-dir", "1,2"}, "--wind-dir"},
+                      bad_usage{"UnknownStage", {"--stage", "foo"}, "--stage"},
+                      bad_usage{"StageNumberOutOfRange", {"--stage", "3"}, "--stage"},
+                      bad_usage{"PinsNumberOutOfRange", {"--pins", "2"}, "--pins"},
+                      bad_usage{"UnknownIntegrator", {"--integrator", "foo"}, "--integrator"},
+                      bad_usage{"UnknownPins", {"--pins", "foo"}, "--pins"},
+                      bad_usage{"UnknownBackend", {"--backend", "foo"}, "--backend"},
+                      bad_usage{"MalformedGroundZ", {"--ground-z", "abc"}, "--ground-z"},
+                      bad_usage{"NaNTimeStep", {"--dt", "nan"}, "--dt"},
+                      bad_usage{"InfiniteTimeStep", {"--dt", "inf"}, "--dt"},
+                      bad_usage{"NaNStiffness", {"--K", "nan"}, "--K"},
+                      bad_usage{"InfiniteStructuralStiffness", {"--K-struct", "inf"}, "--K-struct"},
+                      bad_usage{"InfiniteDamping", {"--mu", "inf"}, "--mu"},
+                      bad_usage{"NaNGravity", {"--gravity", "nan"}, "--gravity"},
+                      bad_usage{"MinusInfiniteMass", {"--mass", "-inf"}, "--mass"},
+                      bad_usage{"InfiniteSize", {"--size", "inf"}, "--size"},
+                      bad_usage{"NaNWindStrength", {"--wind-strength", "nan"}, "--wind-strength"},
+                      bad_usage{"NaNWindDirection", {"--wind-dir", "nan,0,1"}, "--wind-dir"},
+                      bad_usage{"NaNGroundZ", {"--ground-z", "nan"}, "--ground-z"},
+                      bad_usage{
+                          "NaNGroundFriction", {"--ground-friction", "nan"}, "--ground-friction"}),
+    [](const ::testing::TestParamInfo<bad_usage>& param_info) { return param_info.param.label; });
+
+// K = 1e6 and dt = 0.1 (w dt = 100, far above 2): the spring explodes. Exit 3, one stderr line
+// naming the step s at which the state stopped being finite, and the CSV holds steps 0 .. s-1,
+// all finite.
+TEST_F(cli, DivergenceExitsThreeAndKeepsEveryFiniteStep) {
+  const arguments args = {"--headless", "--stage", "spring", "--K",   "1e6",         "--dt",
+                          "0.1",        "--steps", "1000",   "--csv", "diverged.csv"};
+  const run_result result = run(args);
+  EXPECT_EQ(result.exit_code, 3) << "stderr: " << result.err;
+  EXPECT_EQ(count_lines(result.err), 1u) << result.err;
+  const csv_file csv = read_csv(work() / "diverged.csv");
+  EXPECT_EQ(csv.header, csv_header);
+  const std::vector<long> steps = written_steps(csv, 2);
+  ASSERT_GE(steps.size(), 2u);
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    EXPECT_EQ(steps[i], static_cast<long>(i));
+  }
+  ASSERT_LT(steps.back(), 999) << "the run must have stopped early";
+  for (const csv_row& row : csv.rows) {
+    for (const double value : row.value) {
+      ASSERT_TRUE(std::isfinite(value)) << "step " << row.step;
+    }
+  }
+  const std::string diverged_step = std::to_string(steps.back() + 1);
+  EXPECT_NE(result.err.find("step"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find(diverged_step), std::string::npos)
+      << "expected the step " << diverged_step << " in: " << result.err;
+}
+
+// Without --headless clothlab opens the window; with no display to open it on, that is "any
+// other failure": exit 1 with a message.
+TEST_F(cli, WindowWithoutADisplayExitsOne) {
+  const run_result result = run({"--stage", "spring"}, true);
+  EXPECT_EQ(result.exit_code, 1) << result.err;
+  EXPECT_FALSE(result.err.empty());
+}
+
+TEST_F(cli, UnwritableCsvExitsOne) {
+  const run_result result =
+      run({"--headless", "--stage", "spring", "--steps", "2", "--csv", "/nonexistent-dir/x.csv"});
+  EXPECT_EQ(result.exit_code, 1) << result.err;
+  EXPECT_FALSE(result.err.empty());
+}
+
+TEST_F(cli, UnwritableObjExitsOne) {
+  const run_result result =
+      run({"--headless", "--N", "3", "--steps", "2", "--obj", "/nonexistent-dir/x.obj"});
+  EXPECT_EQ(result.exit_code, 1) << result.err;
+  EXPECT_FALSE(result.err.empty());
+}
+
+// N = 5: 25 positions, 25 normals, 25 texture coordinates, 2 * 4^2 = 32 triangles.
+TEST_F(cli, ObjHoldsTheClothsVerticesAndTriangles) {
+  const run_result result =
+      run({"--headless", "--stage", "cloth", "--N", "5", "--steps", "10", "--obj", "cloth.obj"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::ifstream obj(work() / "cloth.obj");
+  std::string line;
+  int positions = 0;
+  int normals = 0;
+  int texture_coordinates = 0;
+  int triangles = 0;
+  while (std::getline(obj, line)) {
+    std::istringstream fields(line);
+    std::string tag;
+    fields >> tag;
+    positions += tag == "v";
+    normals += tag == "vn";
+    texture_coordinates += tag == "vt";
+    if (tag == "f") {
+      ++triangles;
+      std::string corner;
+      int corners = 0;
+      while (fields >> corner) {
+        const long vertex = std::strtol(corner.c_str(), nullptr, 10);
+        EXPECT_TRUE(vertex >= 1 && vertex <= 25) << line;
+        ++corners;
+      }
+      EXPECT_EQ(corners, 3) << line;
+    }
+  }
+  EXPECT_EQ(positions, 25);
+  EXPECT_EQ(normals, 25);
+  EXPECT_EQ(texture_coordinates, 25);
+  EXPECT_EQ(triangles, 32);
+}
+
+}  // namespace

@@ -1,0 +1,354 @@
+// The GPU cloth (handout section 5) against the CPU cloth: both implement shared/model.md, the
+// GPU in single precision, the CPU in double precision, so the same run on both paths must stay
+// within a small distance. Runs in an off-screen OSMesa context (llvmpipe).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "gl.hpp"
+#include "gl_context.hpp"
+#include "gpu_cloth.hpp"
+#include "spring_mesh.hpp"
+
+namespace clothlab {
+namespace {
+
+// Agreement tolerances: the largest |x_gpu - x_cpu| (and |v_gpu - v_cpu|) over every coordinate
+// of every particle, after a run of the same cloth on both paths. Single precision rounds
+// positions of order 1 m to about 6e-8 m and the rounding errors of the forces accumulate:
+// measured on llvmpipe (Mesa 22.3), N = 12, the largest differences are 2.2e-6 m and 4.6e-5 m/s
+// after 300 semi-implicit steps, 1.6e-6 m and 2.3e-4 m/s after 100 explicit steps (the test
+// prints them for each case). The tolerances leave a margin of about 4 over them.
+constexpr double position_tolerance = 1e-5;  // m
+constexpr double velocity_tolerance = 1e-3;  // m/s
+// Semi-implicit Euler is stable at dt = 0.002 s: 300 steps, 0.6 s of simulated time.
+constexpr int semi_implicit_steps = 300;
+// Explicit Euler is unstable for this stiff cloth (handout question 4): its fastest modes grow by
+// about 10 every 50 steps, and so do the rounding differences between the two paths (1e-4 m
+// after 200 steps, 0.1 m after 300, when the CPU run itself has blown up to 50 m/s). The
+// comparison is meaningful for 100 steps, 0.2 s.
+constexpr int explicit_steps = 100;
+constexpr int grid_size = 12;
+
+class GpuCloth : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    std::string error;
+    context_ = create_offscreen_context(16, 16, error).release();
+    ASSERT_NE(context_, nullptr) << error;
+  }
+  static void TearDownTestSuite() {
+    delete context_;
+    context_ = nullptr;
+  }
+
+  static gl_context* context_;
+};
+gl_context* GpuCloth::context_ = nullptr;
+
+cloth_parameters small_cloth() {
+  cloth_parameters p;
+  p.grid_size = grid_size;
+  p.ground_enabled = false;
+  return p;
+}
+
+double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    largest = std::max(largest, std::abs(a[i] - b[i]));
+  return largest;
+}
+
+double max_position_difference(const spring_mesh& a, const spring_mesh& b) {
+  return max_difference(a.particles().position, b.particles().position);
+}
+
+struct run_difference {
+  double position;          // m
+  double velocity;          // m/s
+  int particles_on_ground;  // in the CPU run, at the end
+};
+
+// Runs `steps` steps of the cloth of cpu_parameters on the CPU and of the same initial cloth with
+// gpu_parameters on the GPU; returns the largest differences at the end.
+run_difference compare_runs(const cloth_parameters& cpu_parameters,
+                            const cloth_parameters& gpu_parameters, int steps) {
+  spring_mesh cpu(cpu_parameters);
+  spring_mesh gpu_result(cpu_parameters);
+  gpu_cloth gpu;
+  std::string error;
+  EXPECT_TRUE(gpu.load(cpu, error)) << error;
+  for (int s = 0; s < steps; ++s) {
+    cpu.step();
+    gpu.step(gpu_parameters);
+  }
+  gpu.read_state(gpu_result);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_TRUE(cpu.particles().is_finite());
+  EXPECT_TRUE(gpu_result.particles().is_finite());
+  int on_ground = 0;
+  for (std::size_t k = 0; k < cpu.particles().size(); ++k) {
+    on_ground += cpu.particles().position[3 * k + 2] == cpu_parameters.ground_height;
+  }
+  return {max_position_difference(cpu, gpu_result),
+          max_difference(cpu.particles().velocity, gpu_result.particles().velocity), on_ground};
+}
+
+// The agreement cases: pins without wind, wind, ground contact, each with both integrators.
+struct agreement_case {
+  const char* name;
+  cloth_parameters parameters;
+  int steps = 0;
+};
+
+agreement_case with_integrator(agreement_case c, integrator_kind integrator) {
+  c.parameters.dynamics.integrator = integrator;
+  c.steps = integrator == integrator_kind::explicit_euler ? explicit_steps : semi_implicit_steps;
+  return c;
+}
+
+std::vector<agreement_case> agreement_cases() {
+  cloth_parameters pinned = small_cloth();  // the two corners pinned, no wind, no ground
+
+  cloth_parameters wind = small_cloth();
+  wind.wind_strength = 4.0;
+  wind.wind_direction = {1.0, 2.0, 3.0};  // not unit: both paths normalise it
+
+  // Hanging from its corners, the free edge swings down onto a ground close below.
+  cloth_parameters ground = small_cloth();
+  ground.ground_enabled = true;
+  ground.ground_height = -0.1;
+  ground.wind_strength = 2.0;
+  ground.wind_direction = {0.0, 1.0, 0.0};
+
+  std::vector<agreement_case> cases;
+  for (integrator_kind integrator :
+       {integrator_kind::semi_implicit, integrator_kind::explicit_euler}) {
+    cases.push_back(with_integrator({"PinsNoWind", pinned}, integrator));
+    cases.push_back(with_integrator({"Wind", wind}, integrator));
+    cases.push_back(with_integrator({"Ground", ground}, integrator));
+  }
+  return cases;
+}
+
+TEST_F(GpuCloth, SameRunsStayWithinTheToleranceOfTheCpu) {
+  for (const agreement_case& c : agreement_cases()) {
+    const std::string integrator(integrator_name(c.parameters.dynamics.integrator));
+    const run_difference difference = compare_runs(c.parameters, c.parameters, c.steps);
+    std::printf(
+        "  %-10s %-13s after %3d steps: max |p_gpu - p_cpu| = %.2g m, "
+        "max |v_gpu - v_cpu| = %.2g m/s\n",
+        c.name, integrator.c_str(), c.steps, difference.position, difference.velocity);
+    EXPECT_LE(difference.position, position_tolerance) << c.name << ", " << integrator;
+    EXPECT_LE(difference.velocity, velocity_tolerance) << c.name << ", " << integrator;
+    if (c.parameters.ground_enabled) {  // the case does test the contact
+      EXPECT_GT(difference.particles_on_ground, 0) << c.name << ", " << integrator;
+    }
+  }
+}
+
+TEST_F(GpuCloth, TheComparisonFailsWhenTheGpuRunsAnotherCloth) {
+  const cloth_parameters cpu_parameters = agreement_cases()[0].parameters;
+  cloth_parameters stiffer = cpu_parameters;
+  stiffer.structural_stiffness *= 1.01;  // 1 % stiffer on the GPU only
+  EXPECT_GT(compare_runs(cpu_parameters, stiffer, semi_implicit_steps).position,
+            position_tolerance);
+}
+
+TEST_F(GpuCloth, SwitchingFromCpuToGpuMidRunCarriesTheState) {
+  cloth_parameters p = agreement_cases()[1].parameters;  // wind
+  spring_mesh cpu(p);
+  for (int s = 0; s < 100; ++s)
+    cpu.step();
+  gpu_cloth gpu;
+  std::string error;
+  ASSERT_TRUE(gpu.load(cpu, error)) << error;
+  spring_mesh gpu_result(p);
+  gpu.read_state(gpu_result);
+  // Loading rounds to float: a relative 2^-24 on coordinates below 1 m.
+  EXPECT_LE(max_position_difference(cpu, gpu_result), 1e-7);
+  for (int s = 0; s < 200; ++s) {
+    cpu.step();
+    gpu.step(p);
+  }
+  gpu.read_state(gpu_result);
+  EXPECT_LE(max_position_difference(cpu, gpu_result), position_tolerance);
+}
+
+TEST_F(GpuCloth, PinnedParticlesStayExactlyInPlaceWithZeroVelocity) {
+  cloth_parameters p = agreement_cases()[1].parameters;  // wind, the corners pinned
+  spring_mesh cloth(p);
+  gpu_cloth gpu;
+  std::string error;
+  ASSERT_TRUE(gpu.load(cloth, error)) << error;
+  for (int s = 0; s < 1000; ++s)
+    gpu.step(p);
+  spring_mesh result(p);
+  gpu.read_state(result);
+  for (std::size_t k :
+       {spring_mesh::index(0, 0, grid_size), spring_mesh::index(grid_size - 1, 0, grid_size)}) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      EXPECT_EQ(result.particles().position[3 * k + c],
+                static_cast<float>(cloth.particles().position[3 * k + c]));
+      EXPECT_EQ(result.particles().velocity[3 * k + c], 0.0);
+    }
+  }
+  // and the others did move: the cloth fell
+  EXPECT_LT(result.particles().position[3 * spring_mesh::index(0, grid_size - 1, grid_size) + 2],
+            -0.1);
+}
+
+TEST_F(GpuCloth, NoParticleEverEndsBelowTheGround) {
+  cloth_parameters p = small_cloth();
+  p.pins = pin_mode::none;
+  p.ground_enabled = true;
+  p.ground_height = -0.3;
+  p.wind_strength = 3.0;
+  p.wind_direction = {1.0, 0.0, 1.0};
+  spring_mesh cloth(p);
+  gpu_cloth gpu;
+  std::string error;
+  ASSERT_TRUE(gpu.load(cloth, error)) << error;
+  const double ground = static_cast<float>(p.ground_height);  // z_g as the GPU holds it
+  int touching = 0;
+  for (int s = 0; s < 1000; ++s) {
+    gpu.step(p);
+    if (s % 100 != 99)
+      continue;
+    gpu.read_state(cloth);
+    for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+      const double z = cloth.particles().position[3 * k + 2];
+      ASSERT_GE(z, ground) << "particle " << k << " after " << s + 1 << " steps";
+      touching += z == ground;
+    }
+  }
+  EXPECT_GT(touching, 0);  // it did reach the ground (a free fall of 0.3 m takes 0.25 s)
+}
+
+TEST_F(GpuCloth, FirstStepOfAFreeFlatClothIsGravityTimesDtExactly) {
+  cloth_parameters p = small_cloth();
+  p.pins = pin_mode::none;
+  p.dynamics.damping = 0.7;  // multiplies a zero velocity: no effect on the first step
+  spring_mesh cloth(p);
+  gpu_cloth gpu;
+  std::string error;
+  ASSERT_TRUE(gpu.load(cloth, error)) << error;
+  gpu.step(p);
+  gpu.read_state(cloth);
+  // Flat and at rest, every spring force lies in the plane z = 0: a_z = -g0 exactly, so
+  // v_z = dt (-g0) and z = dt v_z, each one float multiplication.
+  const float dt = static_cast<float>(p.dynamics.time_step);
+  const float expected_vz = dt * -static_cast<float>(p.dynamics.gravity);
+  const float expected_z = dt * expected_vz;
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+    EXPECT_EQ(cloth.particles().velocity[3 * k + 2], expected_vz) << "particle " << k;
+    EXPECT_EQ(cloth.particles().position[3 * k + 2], expected_z) << "particle " << k;
+  }
+}
+
+TEST_F(GpuCloth, NormalTextureHoldsTheNormalsOfTheCurrentPositions) {
+  cloth_parameters p = agreement_cases()[1].parameters;  // wind: a curved cloth
+  spring_mesh cpu(p);
+  gpu_cloth gpu;
+  std::string error;
+  ASSERT_TRUE(gpu.load(cpu, error)) << error;
+  for (int s = 0; s < 200; ++s) {
+    cpu.step();
+    gpu.step(p);
+  }
+  cpu.compute_normals();
+  std::vector<float> texels(4 * cpu.particles().size());
+  glBindTexture(GL_TEXTURE_2D, gpu.normal_texture());
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texels.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+  double largest = 0.0;
+  for (std::size_t k = 0; k < cpu.particles().size(); ++k) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      largest = std::max(largest, std::abs(texels[4 * k + c] - cpu.normals()[3 * k + c]));
+    }
+  }
+  EXPECT_LE(largest, 1e-4);  // unit vectors from positions that agree within 1e-5 m, h = 0.09 m
+  EXPECT_GT(cpu.normals()[3 * spring_mesh::index(5, 5, grid_size) + 1], 0.01);  // curved
+}
+
+TEST_F(GpuCloth, StepLeavesTheCallersGlStateAsItFoundIt) {
+  cloth_parameters p = small_cloth();
+  spring_mesh cloth(p);
+  gpu_cloth gpu;
+  std::string error;
+  ASSERT_TRUE(gpu.load(cloth, error)) << error;
+  glViewport(1, 2, 3, 4);
+  glEnable(GL_BLEND);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  gpu.step(p);
+  GLint viewport[4] = {};
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  EXPECT_EQ(viewport[0], 1);
+  EXPECT_EQ(viewport[1], 2);
+  EXPECT_EQ(viewport[2], 3);
+  EXPECT_EQ(viewport[3], 4);
+  GLint framebuffer = -1;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+  EXPECT_EQ(framebuffer, 0);
+  EXPECT_EQ(glIsEnabled(GL_BLEND), GL_TRUE);
+  GLint polygon_mode[2] = {};
+  glGetIntegerv(GL_POLYGON_MODE, polygon_mode);
+  EXPECT_EQ(polygon_mode[0], GL_LINE);
+  glDisable(GL_BLEND);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  // and blending did not leak into the step: the run still agrees with the CPU
+  cloth.step();
+  spring_mesh result(p);
+  gpu.read_state(result);
+  EXPECT_LE(max_position_difference(cloth, result), 1e-6);
+}
+
+TEST_F(GpuCloth, GridTooLargeForTheTexturesIsRefusedNamingNAndTheLimit) {
+  GLint max_texture_size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_size);
+  GLint max_viewport[2] = {};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
+  const int limit = std::min({max_texture_size, max_viewport[0], max_viewport[1]});
+  ASSERT_GT(limit, 0);
+  std::string error;
+  EXPECT_FALSE(gpu_cloth::check_grid_size(limit + 1, error));
+  EXPECT_NE(error.find("N=" + std::to_string(limit + 1)), std::string::npos) << error;
+  EXPECT_NE(error.find(std::to_string(limit)), std::string::npos) << error;
+  EXPECT_TRUE(gpu_cloth::check_grid_size(limit, error)) << error;
+  EXPECT_FALSE(gpu_cloth::check_grid_size(1, error));
+  EXPECT_NE(error.find("N=1"), std::string::npos) << error;
+}
+
+TEST_F(GpuCloth, StepBeforeLoadIsRefused) {
+  gpu_cloth gpu;
+  EXPECT_THROW(gpu.step(small_cloth()), std::logic_error);
+}
+
+TEST_F(GpuCloth, IntegratorsOtherThanTheTwoEulersAreRefusedByName) {
+  std::string error;
+  EXPECT_TRUE(gpu_cloth::supports_integrator(integrator_kind::semi_implicit, error));
+  EXPECT_TRUE(gpu_cloth::supports_integrator(integrator_kind::explicit_euler, error));
+  for (integrator_kind integrator : all_integrators) {
+    if (integrator == integrator_kind::semi_implicit ||
+        integrator == integrator_kind::explicit_euler) {
+      continue;
+    }
+    const std::string name(integrator_name(integrator));
+    EXPECT_FALSE(gpu_cloth::supports_integrator(integrator, error)) << name;
+    EXPECT_NE(error.find(name), std::string::npos) << error;
+
+    cloth_parameters p = small_cloth();
+    spring_mesh cloth(p);
+    gpu_cloth gpu;
+    ASSERT_TRUE(gpu.load(cloth, error)) << error;
+    p.dynamics.integrator = integrator;
+    EXPECT_THROW(gpu.step(p), std::invalid_argument) << name;
+  }
+}
+
+}  // namespace
+}  // namespace clothlab
