@@ -59,6 +59,53 @@ glm::dvec3 parse_vector(const std::string& option, const std::string& text) {
   return {values[0], values[1], values[2]};
 }
 
+// "A,B,C" (the values) or "FROM:TO:COUNT" (COUNT values spaced evenly on a log scale, both ends
+// included), all positive and finite.
+std::vector<double> parse_list(const std::string& option, const std::string& text) {
+  auto number = [&](const std::string& item) {
+    std::size_t used = 0;
+    double x = NAN;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(x)) {
+      throw usage_error{option + " " + text + ": '" + item + "' is not a finite number"};
+    }
+    return x;
+  };
+  std::vector<std::string> items;
+  const char separator = text.find(':') != std::string::npos ? ':' : ',';
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, separator);)
+    items.push_back(item);
+  if (items.empty() || text.back() == separator) {
+    throw usage_error{option + " " + text + ": expected A,B,C or FROM:TO:COUNT"};
+  }
+  std::vector<double> values;
+  if (separator == ':') {
+    if (items.size() != 3)
+      throw usage_error{option + " " + text + ": expected FROM:TO:COUNT"};
+    const double from = number(items[0]);
+    const double to = number(items[1]);
+    const double count = number(items[2]);
+    if (!(from > 0 && to > 0) || count != std::floor(count) || count < 2 || count > 200) {
+      throw usage_error{option + " " + text +
+                        ": FROM and TO must be positive and COUNT a whole number from 2 to 200"};
+    }
+    for (int i = 0; i < int(count); ++i) {
+      values.push_back(from * std::pow(to / from, i / (count - 1)));
+    }
+  } else {
+    for (const std::string& item : items)
+      values.push_back(number(item));
+    if (values.size() > 200)
+      throw usage_error{option + " " + text + ": at most 200 values"};
+  }
+  return values;
+}
+
 }  // namespace
 
 parse_result parse_command_line(int argc, const char* const* argv) {
@@ -74,14 +121,18 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   // Values given on the command line; defaults come from the parameter structs.
   double dt = 0, stiffness = 0, damping = 0, mass = 0, gravity = 0;
   std::string stage = "cloth", backend = "cpu", integrator, pin_choice, ground_z, wind_dir;
+  std::string scaling, sweep_dt, sweep_k, sweep_n;
   const std::map<std::string, stage_kind> stages = {{"spring", stage_kind::spring},
                                                     {"coupled", stage_kind::coupled},
                                                     {"cloth", stage_kind::cloth}};
   const std::map<std::string, backend_kind> backends = {{"cpu", backend_kind::cpu},
                                                         {"gpu", backend_kind::gpu}};
-  const std::map<std::string, integrator_kind> integrators = {
-      {"semi-implicit", integrator_kind::semi_implicit},
-      {"explicit", integrator_kind::explicit_euler}};
+  std::vector<std::string> integrators;
+  for (integrator_kind kind : all_integrators)
+    integrators.emplace_back(integrator_name(kind));
+  const std::vector<std::string> scalings = {
+      std::string(resolution_scaling_name(resolution_scaling::per_particle)),
+      std::string(resolution_scaling_name(resolution_scaling::resolution_independent))};
   const std::map<std::string, pin_mode> pins = {{"corners", pin_mode::corners},
                                                 {"none", pin_mode::none}};
 
@@ -91,7 +142,9 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       ->check(CLI::IsMember(stages));
   app.add_option("--backend", backend, "cpu | gpu: the cloth's simulation path (default cpu)")
       ->check(CLI::IsMember(backends));
-  app.add_option("--integrator", integrator, "semi-implicit (default) | explicit")
+  app.add_option(
+         "--integrator", integrator,
+         "semi-implicit (default) | explicit | verlet | rk4 | implicit (GPU: the first two)")
       ->check(CLI::IsMember(integrators));
   app.add_option("--steps", o.steps, "Steps to run, headless (default 1000)");
   auto* dt_option = app.add_option("--dt", dt, "Step length, s (spring 0.01, cloth 0.002)");
@@ -122,6 +175,21 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   app.add_option("--png", o.png_path, "Render the final state off-screen to this PNG");
   app.add_option("--width", o.width, "PNG width, px (800)");
   app.add_option("--height", o.height, "PNG height, px (600)");
+  app.add_option("--energy-csv", o.energy_csv_path,
+                 "Write step,t,kinetic,gravity,spring,total (every --csv-every steps)");
+  app.add_option("--scaling", scaling,
+                 "per-particle (default, the handout's) | resolution-independent (question 10)")
+      ->check(CLI::IsMember(scalings));
+  app.add_option("--reference-N", cloth.reference_grid_size,
+                 "Grid whose particles have --mass and springs the K (resolution-independent)")
+      ->capture_default_str();
+  app.add_option(
+      "--sweep", o.sweep_path,
+      "Stability map: run every (dt, K or N) cell, write dt,K,N,integrator,diverged,step");
+  app.add_option("--sweep-dt", sweep_dt, "Sweep dt values: A,B,C or FROM:TO:COUNT (log-spaced)");
+  app.add_option("--sweep-K", sweep_k, "Sweep stiffnesses (cloth: K_struct, ratios kept)");
+  app.add_option("--sweep-N", sweep_n, "Sweep grid sizes (cloth) or chain lengths (coupled)");
+  app.add_option("--sweep-time", o.sweep_time, "Simulated seconds per sweep cell (2)");
 
   try {
     app.parse(argc, argv);
@@ -155,7 +223,17 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       if (*gravity_option)
         d->gravity = gravity;
       if (!integrator.empty())
-        d->integrator = integrators.at(integrator);
+        d->integrator = *parse_integrator(integrator);
+    }
+    if (!scaling.empty()) cloth.scaling = *parse_resolution_scaling(scaling);
+    if (!sweep_dt.empty()) o.sweep_time_steps = parse_list("--sweep-dt", sweep_dt);
+    if (!sweep_k.empty()) o.sweep_stiffnesses = parse_list("--sweep-K", sweep_k);
+    if (!sweep_n.empty()) {
+      for (double n : parse_list("--sweep-N", sweep_n)) {
+        require(n == std::floor(n) && n >= 1 && n <= max_grid_size, "--sweep-N", n,
+                "must be whole numbers between 1 and " + std::to_string(max_grid_size));
+        o.sweep_grid_sizes.push_back(static_cast<int>(n));
+      }
     }
     if (*k_option)
       o.spring.stiffness = o.coupled.stiffness = stiffness;
@@ -229,17 +307,57 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     require(o.height >= 1 && o.height <= max_image_side, "--height", o.height,
             "must be between 1 and " + std::to_string(max_image_side));
 
+    require(cloth.reference_grid_size >= 2 && cloth.reference_grid_size <= max_grid_size,
+            "--reference-N", cloth.reference_grid_size,
+            "must be between 2 and " + std::to_string(max_grid_size));
+    for (double x : o.sweep_time_steps)
+      require(x > 0, "--sweep-dt", x, "must be positive");
+    for (double x : o.sweep_stiffnesses)
+      require(x >= 0, "--sweep-K", x, "must be at least 0");
+    require_finite("--sweep-time", o.sweep_time);
+    require(o.sweep_time > 0 && o.sweep_time <= 1000, "--sweep-time", o.sweep_time,
+            "must be positive and at most 1000 s");
+
     // Combinations.
     if (o.backend == backend_kind::gpu && o.stage != stage_kind::cloth) {
       throw usage_error{
           "--backend gpu: the GPU path simulates the cloth; use it with --stage cloth"};
+    }
+    if (o.backend == backend_kind::gpu &&
+        o.cloth.dynamics.integrator != integrator_kind::semi_implicit &&
+        o.cloth.dynamics.integrator != integrator_kind::explicit_euler) {
+      throw usage_error{"--integrator " + integrator +
+                        ": the GPU path runs semi-implicit or explicit only; use --backend cpu"};
+    }
+    if (!o.sweep_path.empty()) {
+      if (!o.sweep_stiffnesses.empty() && !o.sweep_grid_sizes.empty()) {
+        throw usage_error{"--sweep-N " + sweep_n + ": sweep either K (--sweep-K) or N, not both"};
+      }
+      if (!o.sweep_grid_sizes.empty() && o.stage == stage_kind::spring) {
+        throw usage_error{"--sweep-N " + sweep_n +
+                          ": the single spring has no size; use --stage coupled or cloth"};
+      }
+      if (o.backend == backend_kind::gpu) {
+        throw usage_error{"--sweep: the stability map runs on the CPU; drop --backend gpu"};
+      }
+      for (const auto* option : {"--csv", "--obj", "--png", "--energy-csv"}) {
+        if (app.count(option) > 0) {
+          throw usage_error{std::string(option) + ": not with --sweep (a sweep runs many cells)"};
+        }
+      }
+    } else {
+      for (const auto* option : {"--sweep-dt", "--sweep-K", "--sweep-N", "--sweep-time"}) {
+        if (app.count(option) > 0)
+          throw usage_error{std::string(option) + ": only with --sweep"};
+      }
     }
     if (!o.obj_path.empty() && o.stage != stage_kind::cloth) {
       throw usage_error{"--obj " + o.obj_path +
                         ": the OBJ is the cloth's; use it with --stage cloth"};
     }
     if (!o.headless) {
-      for (const auto* option : {"--csv", "--csv-every", "--obj", "--png", "--steps"}) {
+      for (const auto* option :
+           {"--csv", "--csv-every", "--obj", "--png", "--steps", "--energy-csv", "--sweep"}) {
         if (app.count(option) > 0) {
           throw usage_error{std::string(option) + ": only with --headless (the window runs live)"};
         }

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "coupled_springs.hpp"
 #include "single_spring.hpp"
@@ -20,10 +21,17 @@ struct options {
   long steps = 1000;     // headless: steps to run
   std::string csv_path;  // empty: no CSV
   long csv_every = 1;
-  std::string obj_path;  // empty: no OBJ
-  std::string png_path;  // empty: no PNG
-  int width = 800;       // px, of --png
-  int height = 600;      // px, of --png
+  std::string obj_path;         // empty: no OBJ
+  std::string png_path;         // empty: no PNG
+  int width = 800;              // px, of --png
+  int height = 600;             // px, of --png
+  std::string energy_csv_path;  // empty: no energy CSV (step,t,kinetic,gravity,spring,total)
+  // --sweep: the stability map of the stage and integrator instead of one run.
+  std::string sweep_path;                 // empty: no sweep
+  std::vector<double> sweep_time_steps;   // dt of each column, s (empty: around the limit)
+  std::vector<double> sweep_stiffnesses;  // K of each row, N/m (empty with no grid sizes: around K)
+  std::vector<int> sweep_grid_sizes;      // N (cloth) or n (chain) of each row, instead of K
+  double sweep_time = 2.0;                // s simulated in each cell
   single_spring_parameters spring;
   coupled_springs_parameters coupled;
   cloth_parameters cloth;

@@ -29,12 +29,13 @@ void coupled_springs::load_model() {
 }
 
 void coupled_springs::compute_force() {
-  std::fill(particles_.force.begin(), particles_.force.end(), 0.0);
-  accumulate_spring_forces(springs_, parameters.stiffness, particles_.position, particles_.force);
+  const spring_set sets[] = {{springs_, parameters.stiffness}};
+  evaluate_forces({sets, {}}, particles_.position, particles_.force);
 }
 
 void coupled_springs::apply_force() {
-  integrate(parameters.dynamics, particles_);
+  const spring_set sets[] = {{springs_, parameters.stiffness}};
+  integrator_.step(parameters.dynamics, {sets, {}}, particles_);
 }
 
 }  // namespace clothlab

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "integrator.hpp"
 #include "parameters.hpp"
 #include "particle_system.hpp"
 #include "spring.hpp"
@@ -27,10 +28,12 @@ class coupled_springs {
   }
 
   const particle_system& particles() const { return particles_; }
+  particle_system& particles() { return particles_; }  // to set a state by hand (tests, labs)
   std::span<const spring> springs() const { return springs_; }
 
  private:
   particle_system particles_;
+  time_integrator integrator_;  // the scheme's scratch arrays, kept between steps
   std::vector<spring> springs_;
 };
 

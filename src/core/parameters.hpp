@@ -5,6 +5,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
+#include <optional>
 #include <string_view>
 
 namespace clothlab {
@@ -13,13 +15,25 @@ namespace clothlab {
 enum class stage_kind { spring, coupled, cloth };
 std::string_view stage_name(stage_kind stage);  // "spring", "coupled", "cloth"
 
-// How one step of length dt advances (model.md, "Integrators").
+// How one step of length dt advances (model.md, "Integrators"; integrator.hpp for the added
+// ones). The first two multiply the velocity by (1 - mu dt); the others treat the damping as the
+// force -mu m v, which is the same to first order in dt.
 enum class integrator_kind {
-  semi_implicit,  // v <- (1 - mu dt) v + dt a(p), then p <- p + dt v (the handout's code order)
-  explicit_euler  // p <- p + dt v and v <- (1 - mu dt) v + dt a(p), both from the old state (eq. 6)
+  semi_implicit,    // v <- (1 - mu dt) v + dt a(p), then p <- p + dt v (the handout's code order)
+  explicit_euler,   // p <- p + dt v and v <- (1 - mu dt) v + dt a(p), both from the old state
+  velocity_verlet,  // half kick, drift, half kick: second order, symplectic without damping
+  runge_kutta_4,    // classical fourth-order Runge-Kutta on (p, v)
+  implicit_euler    // backward Euler linearised once per step (Baraff and Witkin 1998)
 };
+inline constexpr std::array<integrator_kind, 5> all_integrators = {
+    integrator_kind::semi_implicit, integrator_kind::explicit_euler,
+    integrator_kind::velocity_verlet, integrator_kind::runge_kutta_4,
+    integrator_kind::implicit_euler};
 
-std::string_view integrator_name(integrator_kind kind);  // "semi-implicit", "explicit"
+// "semi-implicit", "explicit", "verlet", "rk4", "implicit" (the command line's names).
+std::string_view integrator_name(integrator_kind kind);
+// The inverse of integrator_name; nullopt for an unknown name.
+std::optional<integrator_kind> parse_integrator(std::string_view name);
 
 // What every stage shares: time step, damping, mass, gravity and the integrator.
 struct dynamics_parameters {
@@ -48,6 +62,15 @@ enum class pin_mode {
   none      // free fall
 };
 
+// Question 10: what stays fixed when the grid size N changes.
+enum class resolution_scaling {
+  per_particle,           // the handout's: m and the three K are per particle and per spring
+  resolution_independent  // the cloth of the reference grid, resolved with N x N particles
+};
+// "per-particle", "resolution-independent"
+std::string_view resolution_scaling_name(resolution_scaling scaling);
+std::optional<resolution_scaling> parse_resolution_scaling(std::string_view name);
+
 // Stage 3: the N x N cloth (handout section 4).
 struct cloth_parameters {
   dynamics_parameters dynamics{.time_step = 0.002, .damping = 0.5};
@@ -62,6 +85,20 @@ struct cloth_parameters {
   bool ground_enabled = true;                   // the plane z = ground_height (question 9)
   double ground_height = -1.0;                  // z_g, m
   double ground_friction = 2.0;  // mu_g, 1/s: tangential velocity *= (1 - mu_g dt) in contact
+  // Question 10. per_particle: mass and stiffnesses above are used as they are, whatever N.
+  // resolution_independent: they describe the cloth as resolved by the reference grid, and
+  // effective_cloth_parameters() derives the per-particle mass and per-spring stiffnesses of
+  // the current N from them (same total mass, same stretching and bending response).
+  resolution_scaling scaling = resolution_scaling::per_particle;
+  int reference_grid_size = 20;  // N_ref: the grid whose particles have mass m and springs K
 };
+
+// The parameters that the simulation of an N x N cloth really uses: the identity in
+// per_particle mode; in resolution_independent mode (h = S / (N - 1), h_ref = S / (N_ref - 1)):
+//   mass per particle     m_N        = m N_ref^2 / N^2          (total mass M = m N_ref^2 fixed)
+//   structural and shear  K_N        = K                         (2D stretching is scale-free)
+//   bending               K_bend,N   = K_bend (h_ref / h)^4      (bending energy ~ K_bend h^4)
+// Derivation in parameters.cpp. The result has scaling = per_particle (it is resolved).
+cloth_parameters effective_cloth_parameters(const cloth_parameters& parameters);
 
 }  // namespace clothlab

@@ -22,12 +22,13 @@ void single_spring::load_model() {
 }
 
 void single_spring::compute_force() {
-  std::fill(particles_.force.begin(), particles_.force.end(), 0.0);
-  accumulate_spring_forces(springs_, parameters.stiffness, particles_.position, particles_.force);
+  const spring_set sets[] = {{springs_, parameters.stiffness}};
+  evaluate_forces({sets, {}}, particles_.position, particles_.force);
 }
 
 void single_spring::apply_force() {
-  integrate(parameters.dynamics, particles_);
+  const spring_set sets[] = {{springs_, parameters.stiffness}};
+  integrator_.step(parameters.dynamics, {sets, {}}, particles_);
 }
 
 }  // namespace clothlab

@@ -5,6 +5,7 @@
 #include <array>
 #include <span>
 
+#include "integrator.hpp"
 #include "parameters.hpp"
 #include "particle_system.hpp"
 #include "spring.hpp"
@@ -26,10 +27,12 @@ class single_spring {
   }
 
   const particle_system& particles() const { return particles_; }
+  particle_system& particles() { return particles_; }  // to set a state by hand (tests, labs)
   std::span<const spring> springs() const { return springs_; }
 
  private:
   particle_system particles_;
+  time_integrator integrator_;  // the scheme's scratch arrays, kept between steps
   std::array<spring, 1> springs_{};
 };
 

@@ -42,16 +42,43 @@ spring_mesh::spring_mesh(const cloth_parameters& p) : parameters(p) {
   load_model();
 }
 
+cloth_parameters spring_mesh::effective_parameters() const {
+  cloth_parameters built = parameters;
+  built.grid_size = grid_size_;
+  return effective_cloth_parameters(built);
+}
+
 double spring_mesh::stiffness(spring_family family) const {
+  const cloth_parameters effective = effective_parameters();
   switch (family) {
     case spring_family::structural:
-      return parameters.structural_stiffness;
+      return effective.structural_stiffness;
     case spring_family::shear:
-      return parameters.shear_stiffness;
+      return effective.shear_stiffness;
     case spring_family::bending:
-      return parameters.bending_stiffness;
+      return effective.bending_stiffness;
   }
   return 0.0;
+}
+
+std::array<spring_set, 3> spring_mesh::spring_sets() const {
+  std::array<spring_set, 3> sets{};
+  for (spring_family family : all_spring_families)
+    sets[static_cast<int>(family)] = {springs(family), stiffness(family)};
+  return sets;
+}
+
+force_model spring_mesh::forces(const std::array<spring_set, 3>& sets) {
+  force_model model{sets, {}};
+  if (parameters.wind_strength != 0.0) {
+    model.add_other_forces = [this](std::span<const double> position, std::span<double> force) {
+      stage_normals_.resize(position.size());
+      compute_vertex_normals(grid_size_, position, stage_normals_);
+      accumulate_wind_forces(parameters.wind_strength, parameters.wind_direction, stage_normals_,
+                             force);
+    };
+  }
+  return model;
 }
 
 void spring_mesh::load_model() {
@@ -101,21 +128,19 @@ void spring_mesh::compute_normals() {
 }
 
 void spring_mesh::compute_force() {
-  std::fill(particles_.force.begin(), particles_.force.end(), 0.0);
-  // Normals from the positions at the start of the step (the wind needs them).
+  // Normals from the positions at the start of the step (for drawing; the wind recomputes
+  // those of the positions it is evaluated at, here the same ones).
   compute_normals();
-  for (spring_family family : all_spring_families) {
-    accumulate_spring_forces(springs(family), stiffness(family), particles_.position,
-                             particles_.force);
-  }
-  if (parameters.wind_strength != 0.0) {
-    accumulate_wind_forces(parameters.wind_strength, parameters.wind_direction, normals_,
-                           particles_.force);
-  }
+  // The springs of the three families, then the wind.
+  const std::array<spring_set, 3> sets = spring_sets();
+  evaluate_forces(forces(sets), particles_.position, particles_.force);
 }
 
 void spring_mesh::apply_force() {
-  integrate(parameters.dynamics, particles_);
+  // The mass (and stiffnesses) that the grid size implies in the chosen scaling (question 10).
+  const cloth_parameters effective = effective_parameters();
+  const std::array<spring_set, 3> sets = spring_sets();
+  integrator_.step(effective.dynamics, forces(sets), particles_);
   if (parameters.ground_enabled) {
     apply_ground_contact(parameters.ground_height, parameters.ground_friction,
                          parameters.dynamics.time_step, particles_);

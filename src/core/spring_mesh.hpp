@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "integrator.hpp"
 #include "parameters.hpp"
 #include "particle_system.hpp"
 #include "spring.hpp"
@@ -53,13 +54,27 @@ class spring_mesh {
   std::span<const spring> springs(spring_family family) const {
     return springs_[static_cast<int>(family)];
   }
-  double stiffness(spring_family family) const;  // from parameters
+  // The parameters the simulation uses: effective_cloth_parameters(parameters) for the N of the
+  // last load_model, i.e. parameters themselves in the per_particle scaling (question 10).
+  cloth_parameters effective_parameters() const;
+  // K of a family as the simulation uses it (effective_parameters()).
+  double stiffness(spring_family family) const;
+  // The three families with their stiffness, in spring_family order.
+  std::array<spring_set, 3> spring_sets() const;
+  // The integrator's state, e.g. integrator().implicit_solver().last_iterations() (CG).
+  const time_integrator& integrator() const { return integrator_; }
 
  private:
   int grid_size_ = 0;
   particle_system particles_;
   std::vector<double> normals_;                 // n, unit, 3k + c
   std::array<std::vector<spring>, 3> springs_;  // indexed by spring_family
+  std::vector<double> stage_normals_;           // normals of a scheme's intermediate state (wind)
+  time_integrator integrator_;                  // the scheme's scratch arrays, kept between steps
+
+  // The force model of the current parameters (the wind from the normals of the positions
+  // it is evaluated at); sets must outlive it.
+  force_model forces(const std::array<spring_set, 3>& sets);
 };
 
 // Vertex normals of an N x N grid by central differences (model.md):

@@ -272,7 +272,12 @@ void gpu_cloth::compute_normals() {
   draw_full_screen_pass(grid_size_);
 }
 
-void gpu_cloth::step(const cloth_parameters& p) {
+void gpu_cloth::step(const cloth_parameters& given) {
+  // The mass and stiffnesses the simulation really uses (question 10's resolution mode), for
+  // the grid that is loaded.
+  cloth_parameters resolved = given;
+  resolved.grid_size = grid_size_;
+  const cloth_parameters p = effective_cloth_parameters(resolved);
   if (!is_loaded())
     throw std::logic_error("gpu_cloth::step called before a successful load");
   if (std::string error; !supports_integrator(p.dynamics.integrator, error))

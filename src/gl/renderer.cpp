@@ -476,12 +476,11 @@ void renderer::impl::draw_chain(const frame& f, const particle_system& particles
   set_uniform(flat_program, "view_projection", f.view_projection);
   set_uniform(flat_program, "project_onto_ground", 0);
   set_uniform(flat_program, "flat_colour", coil_colour);
-  glLineWidth(2.0f);
+  // (lines stay 1 px wide: wider ones are not part of a forward-compatible core context)
   glBindVertexArray(coil_vao);
   for (std::size_t i = 0; i < springs.size(); ++i) {
     glDrawArrays(GL_LINE_STRIP, static_cast<GLint>(i) * coil.vertex_count(), coil.vertex_count());
   }
-  glLineWidth(1.0f);
 
   instances.clear();
   for (std::size_t k = 0; k < particles.size(); ++k) {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -246,7 +247,12 @@ INSTANTIATE_TEST_SUITE_P(
         arguments{"--csv", "out.csv"}, arguments{"--csv", "out.csv", "--csv-every", "2"},
         arguments{"--obj", "out.obj"},
         arguments{"--png", "out.png", "--width", "64", "--height", "48"},
-        arguments{"--backend", "gpu", "--png", "out.png", "--width", "32", "--height", "32"}),
+        arguments{"--backend", "gpu", "--png", "out.png", "--width", "32", "--height", "32"},
+        arguments{"--integrator", "verlet"}, arguments{"--integrator", "rk4"},
+        arguments{"--integrator", "implicit"}, arguments{"--energy-csv", "energy.csv"},
+        arguments{"--scaling", "resolution-independent"},
+        arguments{"--scaling", "resolution-independent", "--reference-N", "10"},
+        arguments{"--scaling", "per-particle"}),
     [](const ::testing::TestParamInfo<arguments>& param_info) {
       // "--wind-dir 1,0,0.5" -> "wind_dir_1_0_0_5"
       std::string name;
@@ -507,41 +513,55 @@ TEST_P(cli_refuses, BadUsage) {
 
 INSTANTIATE_TEST_SUITE_P(
     EveryKindOfBadInput, cli_refuses,
-    ::testing::Values(bad_usage{"UnknownOption", {"--frobnicate", "3"}, "--frobnicate"},
-                      bad_usage{"MissingValue", {"--dt"}, "--dt"},
-                      bad_usage{"MalformedNumber", {"--dt", "abc"}, "--dt"},
-                      bad_usage{"TrailingGarbage", {"--dt", "0.01x"}, "--dt"},
-                      bad_usage{"NonIntegerGridSize", {"--N", "2.5"}, "--N"},
-                      bad_usage{"ZeroTimeStep", {"--dt", "0"}, "--dt"},
-                      bad_usage{"NegativeTimeStep", {"--dt", "-1"}, "--dt"},
-                      bad_usage{"GridOfOne", {"--N", "1"}, "--N"},
-                      bad_usage{"NegativeSteps", {"--steps", "-5"}, "--steps"},
-                      bad_usage{"ZeroMass", {"--mass", "0"}, "--mass"},
-                      bad_usage{"NegativeMass", {"--mass", "-1"}, "--mass"},
-                      bad_usage{"ZeroCsvEvery", {"--csv-every", "0"}, "--csv-every"},
-                      bad_usage{"EmptyChain", {"--stage", "coupled", "--chain", "0"}, "--chain"},
-                      bad_usage{"ZeroWindDirection", {"--wind-dir", "0,0,0"}, "--wind-dir"},
-                      bad_usage{"TwoComponentWindDirection", {"--wind-dir", "1,2"}, "--wind-dir"},
-                      bad_usage{"UnknownStage", {"--stage", "foo"}, "--stage"},
-                      bad_usage{"StageNumberOutOfRange", {"--stage", "3"}, "--stage"},
-                      bad_usage{"PinsNumberOutOfRange", {"--pins", "2"}, "--pins"},
-                      bad_usage{"UnknownIntegrator", {"--integrator", "foo"}, "--integrator"},
-                      bad_usage{"UnknownPins", {"--pins", "foo"}, "--pins"},
-                      bad_usage{"UnknownBackend", {"--backend", "foo"}, "--backend"},
-                      bad_usage{"MalformedGroundZ", {"--ground-z", "abc"}, "--ground-z"},
-                      bad_usage{"NaNTimeStep", {"--dt", "nan"}, "--dt"},
-                      bad_usage{"InfiniteTimeStep", {"--dt", "inf"}, "--dt"},
-                      bad_usage{"NaNStiffness", {"--K", "nan"}, "--K"},
-                      bad_usage{"InfiniteStructuralStiffness", {"--K-struct", "inf"}, "--K-struct"},
-                      bad_usage{"InfiniteDamping", {"--mu", "inf"}, "--mu"},
-                      bad_usage{"NaNGravity", {"--gravity", "nan"}, "--gravity"},
-                      bad_usage{"MinusInfiniteMass", {"--mass", "-inf"}, "--mass"},
-                      bad_usage{"InfiniteSize", {"--size", "inf"}, "--size"},
-                      bad_usage{"NaNWindStrength", {"--wind-strength", "nan"}, "--wind-strength"},
-                      bad_usage{"NaNWindDirection", {"--wind-dir", "nan,0,1"}, "--wind-dir"},
-                      bad_usage{"NaNGroundZ", {"--ground-z", "nan"}, "--ground-z"},
-                      bad_usage{
-                          "NaNGroundFriction", {"--ground-friction", "nan"}, "--ground-friction"}),
+    ::testing::Values(
+        bad_usage{"UnknownOption", {"--frobnicate", "3"}, "--frobnicate"},
+        bad_usage{"MissingValue", {"--dt"}, "--dt"},
+        bad_usage{"MalformedNumber", {"--dt", "abc"}, "--dt"},
+        bad_usage{"TrailingGarbage", {"--dt", "0.01x"}, "--dt"},
+        bad_usage{"NonIntegerGridSize", {"--N", "2.5"}, "--N"},
+        bad_usage{"ZeroTimeStep", {"--dt", "0"}, "--dt"},
+        bad_usage{"NegativeTimeStep", {"--dt", "-1"}, "--dt"},
+        bad_usage{"GridOfOne", {"--N", "1"}, "--N"},
+        bad_usage{"NegativeSteps", {"--steps", "-5"}, "--steps"},
+        bad_usage{"ZeroMass", {"--mass", "0"}, "--mass"},
+        bad_usage{"NegativeMass", {"--mass", "-1"}, "--mass"},
+        bad_usage{"ZeroCsvEvery", {"--csv-every", "0"}, "--csv-every"},
+        bad_usage{"EmptyChain", {"--stage", "coupled", "--chain", "0"}, "--chain"},
+        bad_usage{"ZeroWindDirection", {"--wind-dir", "0,0,0"}, "--wind-dir"},
+        bad_usage{"TwoComponentWindDirection", {"--wind-dir", "1,2"}, "--wind-dir"},
+        bad_usage{"UnknownStage", {"--stage", "foo"}, "--stage"},
+        bad_usage{"StageNumberOutOfRange", {"--stage", "3"}, "--stage"},
+        bad_usage{"PinsNumberOutOfRange", {"--pins", "2"}, "--pins"},
+        bad_usage{"UnknownIntegrator", {"--integrator", "foo"}, "--integrator"},
+        bad_usage{"UnknownPins", {"--pins", "foo"}, "--pins"},
+        bad_usage{"UnknownBackend", {"--backend", "foo"}, "--backend"},
+        bad_usage{"MalformedGroundZ", {"--ground-z", "abc"}, "--ground-z"},
+        bad_usage{"NaNTimeStep", {"--dt", "nan"}, "--dt"},
+        bad_usage{"InfiniteTimeStep", {"--dt", "inf"}, "--dt"},
+        bad_usage{"NaNStiffness", {"--K", "nan"}, "--K"},
+        bad_usage{"InfiniteStructuralStiffness", {"--K-struct", "inf"}, "--K-struct"},
+        bad_usage{"InfiniteDamping", {"--mu", "inf"}, "--mu"},
+        bad_usage{"NaNGravity", {"--gravity", "nan"}, "--gravity"},
+        bad_usage{"MinusInfiniteMass", {"--mass", "-inf"}, "--mass"},
+        bad_usage{"InfiniteSize", {"--size", "inf"}, "--size"},
+        bad_usage{"NaNWindStrength", {"--wind-strength", "nan"}, "--wind-strength"},
+        bad_usage{"NaNWindDirection", {"--wind-dir", "nan,0,1"}, "--wind-dir"},
+        bad_usage{"NaNGroundZ", {"--ground-z", "nan"}, "--ground-z"},
+        bad_usage{"NaNGroundFriction", {"--ground-friction", "nan"}, "--ground-friction"},
+        bad_usage{
+            "CpuOnlyIntegratorOnGpu", {"--backend", "gpu", "--integrator", "rk4"}, "--integrator"},
+        bad_usage{"UnknownScaling", {"--scaling", "foo"}, "--scaling"},
+        bad_usage{"ReferenceGridOfOne", {"--reference-N", "1"}, "--reference-N"},
+        bad_usage{"DampingFactorNegative", {"--mu", "1000"}, "--mu"},
+        bad_usage{"SweepDtWithoutSweep", {"--sweep-dt", "0.1,0.2"}, "--sweep-dt"},
+        bad_usage{
+            "MalformedSweepList", {"--sweep", "m.csv", "--sweep-dt", "0.1,abc"}, "--sweep-dt"},
+        bad_usage{
+            "SweepRangeWithoutCount", {"--sweep", "m.csv", "--sweep-dt", "0.1:0.2"}, "--sweep-dt"},
+        bad_usage{"SweepNOnTheSingleSpring",
+                  {"--stage", "spring", "--sweep", "m.csv", "--sweep-N", "2,3"},
+                  "--sweep-N"},
+        bad_usage{"ZeroSweepTime", {"--sweep", "m.csv", "--sweep-time", "0"}, "--sweep-time"}),
     [](const ::testing::TestParamInfo<bad_usage>& param_info) { return param_info.param.label; });
 
 // K = 1e6 and dt = 0.1 (w dt = 100, far above 2): the spring explodes. Exit 3, one stderr line
@@ -631,3 +651,51 @@ TEST_F(cli, ObjHoldsTheClothsVerticesAndTriangles) {
 }
 
 }  // namespace
+
+// Energies at step 0 of the single spring, by hand (m = 1, g0 = 9.8): kinetic m |v|^2 / 2 with
+// v = (1, -1, 0) is 1; gravity m g0 z of p1 at z = 0.5 is 4.9 (p0 is fixed and counts nothing);
+// the spring is at its rest length, 0; total 5.9. Columns as documented.
+TEST_F(cli, EnergyCsvStartsWithTheHandComputedEnergies) {
+  const run_result result = run({"--headless", "--stage", "spring", "--steps", "4", "--csv-every",
+                                 "2", "--energy-csv", "energy.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::istringstream text(read_file(work() / "energy.csv"));
+  std::string line;
+  std::getline(text, line);
+  EXPECT_EQ(line, "step,t,kinetic,gravity,spring,total");
+  std::getline(text, line);
+  double step = 0, t = 0, kinetic = 0, gravity = 0, spring = 0, total = 0;
+  ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &step, &t, &kinetic, &gravity,
+                        &spring, &total),
+            6)
+      << line;
+  EXPECT_EQ(step, 0);
+  EXPECT_DOUBLE_EQ(kinetic, 1.0);
+  EXPECT_DOUBLE_EQ(gravity, 4.9);
+  EXPECT_DOUBLE_EQ(spring, 0.0);
+  EXPECT_DOUBLE_EQ(total, 5.9);
+  int rows = 1;
+  while (std::getline(text, line))
+    ++rows;
+  EXPECT_EQ(rows, 3) << "steps 0, 2 and 4";
+}
+
+// The stability map of the undamped single spring with K = 400, m = 1: omega = 20 rad/s, so
+// semi-implicit Euler is stable for dt < 2 / omega = 0.1 s. At 0.9x the limit the cell is
+// stable, at 1.1x it diverges.
+TEST_F(cli, SweepMapsTheSingleSpringAroundItsTheoreticalLimit) {
+  const run_result result =
+      run({"--headless", "--stage", "spring", "--mu", "0", "--sweep", "map.csv", "--sweep-dt",
+           "0.09,0.11", "--sweep-K", "400", "--sweep-time", "20"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::istringstream text(read_file(work() / "map.csv"));
+  std::string line;
+  std::getline(text, line);
+  EXPECT_EQ(line, "dt,K,N,integrator,diverged,step");
+  std::vector<std::string> rows;
+  while (std::getline(text, line))
+    rows.push_back(line);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].find("0.089999999999999997,400,1,semi-implicit,0,"), 0u) << rows[0];
+  EXPECT_EQ(rows[1].find("0.11,400,1,semi-implicit,1,"), 0u) << rows[1];
+}

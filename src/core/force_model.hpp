@@ -1,0 +1,33 @@
+// The forces of a stage seen by an integrator: a function of the positions that the schemes with
+// several stages per step (Verlet, RK4) evaluate at intermediate states, and the spring data that
+// the implicit scheme differentiates.
+#pragma once
+
+#include <functional>
+#include <span>
+
+#include "spring.hpp"
+
+namespace clothlab {
+
+// One family of springs and its stiffness (the cloth has three, the spring and the chain one).
+struct spring_set {
+  std::span<const spring> springs;
+  double stiffness;  // K, N/m
+};
+
+// F(p), the forces that do not depend on the velocity. The velocity-dependent damping belongs to
+// the integrator (model.md's (1 - mu dt) factor, or the force -mu m v).
+struct force_model {
+  std::span<const spring_set> spring_sets;  // every family with its stiffness
+  // Adds the forces that are not springs at the given positions: the cloth's wind with the
+  // normals of THOSE positions. Empty when there are none.
+  std::function<void(std::span<const double> position, std::span<double> force)> add_other_forces;
+};
+
+// force <- F(position): zero, the springs of every set in order (handout equation 2), then the
+// other forces.
+void evaluate_forces(const force_model& forces, std::span<const double> position,
+                     std::span<double> force);
+
+}  // namespace clothlab

@@ -1,0 +1,118 @@
+#include "glfw_context.hpp"
+
+#include <cstdio>
+
+#include "gl.hpp"  // GLEW, which must come before GLFW
+
+#include <GLFW/glfw3.h>
+
+namespace clothlab {
+namespace {
+
+std::string last_glfw_error;  // GLFW reports its errors through a callback
+
+void remember_glfw_error(int code, const char* description) {
+  last_glfw_error = description ? description : "unknown GLFW error";
+  last_glfw_error += " (GLFW error " + std::to_string(code) + ")";
+}
+
+}  // namespace
+
+std::unique_ptr<glfw_context> glfw_context::create(const std::string& title, int width, int height,
+                                                   std::string& error) {
+  glfwSetErrorCallback(remember_glfw_error);
+  if (glfwInit() != GLFW_TRUE) {
+    error = "cannot open a window: " + last_glfw_error +
+            ". Is a display available? Run it under `xvfb-run -a`, or use `clothlab --headless`.";
+    return nullptr;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (window == nullptr) {
+    error = "cannot create a window with an OpenGL 3.3 core context: " + last_glfw_error;
+    glfwTerminate();
+    return nullptr;
+  }
+  glfwMakeContextCurrent(window);
+  glewExperimental = GL_TRUE;
+  if (const GLenum status = glewInit(); status != GLEW_OK) {
+    error = std::string("GLEW cannot load the OpenGL functions: ") +
+            reinterpret_cast<const char*>(glewGetErrorString(status));
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return nullptr;
+  }
+  glGetError();  // glewInit leaves GL_INVALID_ENUM behind in a core context: discard it
+  glfwSwapInterval(1);
+
+  auto context = std::unique_ptr<glfw_context>(new glfw_context(window));
+  glfwSetWindowUserPointer(window, context.get());
+  // Installed before Dear ImGui's, which calls them after its own handling.
+  glfwSetKeyCallback(window, on_key);
+  glfwSetScrollCallback(window, on_scroll);
+  return context;
+}
+
+glfw_context::glfw_context(GLFWwindow* window) : window_(window) {}
+
+glfw_context::~glfw_context() {
+  glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+int glfw_context::framebuffer_width() const {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  return width;
+}
+
+int glfw_context::framebuffer_height() const {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  return height;
+}
+
+bool glfw_context::should_close() const {
+  return glfwWindowShouldClose(window_) == GLFW_TRUE;
+}
+
+void glfw_context::request_close() {
+  glfwSetWindowShouldClose(window_, GLFW_TRUE);
+}
+
+window_input glfw_context::poll_events() {
+  glfwPollEvents();
+  window_input gathered = std::move(input_);
+  input_ = {};
+  return gathered;
+}
+
+bool glfw_context::is_minimised() const {
+  return glfwGetWindowAttrib(window_, GLFW_ICONIFIED) == GLFW_TRUE || framebuffer_width() == 0 ||
+         framebuffer_height() == 0;
+}
+
+void glfw_context::wait_events() {
+  glfwWaitEvents();
+}
+
+void glfw_context::swap_buffers() {
+  glfwSwapBuffers(window_);
+}
+
+void glfw_context::on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+  if (action != GLFW_PRESS)
+    return;
+  auto* self = static_cast<glfw_context*>(glfwGetWindowUserPointer(window));
+  self->input_.pressed_keys.push_back(key);
+}
+
+void glfw_context::on_scroll(GLFWwindow* window, double /*x_offset*/, double y_offset) {
+  auto* self = static_cast<glfw_context*>(glfwGetWindowUserPointer(window));
+  self->input_.scroll += y_offset;
+}
+
+}  // namespace clothlab

@@ -1,0 +1,388 @@
+#include "panel.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <array>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "stability.hpp"  // the core's: step-size limits and divergence (question 4)
+
+namespace clothlab {
+namespace {
+
+const ImVec4 warning_red = {1.0f, 0.35f, 0.3f, 1.0f};
+const ImVec4 caution_yellow = {1.0f, 0.85f, 0.3f, 1.0f};
+const ImVec4 quiet_green = {0.5f, 0.9f, 0.5f, 1.0f};
+
+// Every slider clamps what is typed after Ctrl+click too, so that no value outside its range
+// (a zero time step, a grid of 1) can reach the simulation.
+bool slider(const char* label, double& value, double min, double max, const char* format,
+            bool logarithmic = false) {
+  const ImGuiSliderFlags flags =
+      ImGuiSliderFlags_AlwaysClamp | (logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
+  return ImGui::SliderScalar(label, ImGuiDataType_Double, &value, &min, &max, format, flags);
+}
+
+bool slider(const char* label, int& value, int min, int max) {
+  return ImGui::SliderInt(label, &value, min, max, "%d", ImGuiSliderFlags_AlwaysClamp);
+}
+
+bool section(const char* title) {
+  return ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen);
+}
+
+void show_readouts(const scene& the_scene) {
+  const run_status& status = the_scene.status();
+  ImGui::Text("t = %.3f s   step %ld", status.time, status.step);
+  const double time_step = the_scene.current_time_step();
+  ImGui::Text("%.0f steps/s (%.2fx real time)   %.0f frames/s", the_scene.steps_per_second(),
+              the_scene.steps_per_second() * time_step, the_scene.frames_per_second());
+  if (status.diverged) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(warning_red,
+                       "diverged at step %ld (t = %.3f s): reduce dt or K, or add damping. "
+                       "R resets. (%s)",
+                       status.step, status.time, status.divergence_reason.c_str());
+    ImGui::PopTextWrapPos();
+  } else if (!the_scene.control.running) {
+    ImGui::TextColored(caution_yellow, "paused (Space runs, N steps once)");
+  } else if (status.behind_real_time) {
+    ImGui::TextColored(caution_yellow, "behind real time: a frame hit its step limit");
+  }
+}
+
+// Question 4: the map of stable (green) and diverged (red) runs over dt (across) and K (up)
+// around the current values (the outlined centre cell); a white dot marks the cells that the
+// theory (stability.hpp) predicts unstable.
+void show_stability_map(scene& the_scene) {
+  stability_map& map = the_scene.stability_explorer;
+  if (ImGui::Button(map.running() ? "Restart the map" : "Map dt x K around the current values")) {
+    map.start(the_scene.stage(), the_scene.spring_stage.parameters,
+              the_scene.chain_stage.parameters, the_scene.cloth_stage.parameters);
+  }
+  if (map.running()) {
+    ImGui::SameLine();
+    if (ImGui::Button("Stop"))
+      map.cancel();
+    ImGui::ProgressBar(static_cast<float>(map.fraction_done()), {-1.0f, 0.0f});
+  }
+  if (!map.started() || map.stage() != the_scene.stage())
+    return;
+
+  const std::vector<sweep_cell> cells = map.cells();
+  const float cell_width = ImGui::GetContentRegionAvail().x / stability_map::columns;
+  const float cell_height = 14.0f;
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImDrawList& draw = *ImGui::GetWindowDrawList();
+  const sweep_cell* hovered = nullptr;
+  for (std::size_t index = 0; index < cells.size(); ++index) {
+    const sweep_cell& cell = cells[index];
+    const int column = static_cast<int>(index % stability_map::columns);
+    const int row = static_cast<int>(index / stability_map::columns);  // K grows upwards
+    const ImVec2 low = {origin.x + static_cast<float>(column) * cell_width,
+                        origin.y + static_cast<float>(stability_map::rows - 1 - row) * cell_height};
+    const ImVec2 high = {low.x + cell_width - 1.0f, low.y + cell_height - 1.0f};
+    const ImU32 colour = !cell.computed  ? IM_COL32(70, 70, 70, 255)
+                         : cell.diverged ? IM_COL32(200, 60, 50, 255)
+                                         : IM_COL32(70, 170, 80, 255);
+    draw.AddRectFilled(low, high, colour);
+    if (cell.time_step >= cell.time_step_limit)  // theory: unstable (limit 0: always)
+      draw.AddCircleFilled({(low.x + high.x) / 2, (low.y + high.y) / 2}, 2.5f,
+                           IM_COL32(255, 255, 255, 255));
+    if (column == stability_map::columns / 2 && row == stability_map::rows / 2)
+      draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 0.0f, 0, 2.0f);
+    if (ImGui::IsMouseHoveringRect(low, high))
+      hovered = &cell;
+  }
+  ImGui::Dummy({cell_width * stability_map::columns, cell_height * stability_map::rows});
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled(
+      "dt across (x sqrt 2 per cell), K up (x 10^1/4), the outlined centre is "
+      "now; green stable, red diverged, dot: unstable in theory");
+  ImGui::PopTextWrapPos();
+  if (hovered != nullptr) {
+    ImGui::BeginTooltip();
+    ImGui::Text("dt = %.4g s, K = %.4g N/m", hovered->time_step, hovered->stiffness);
+    ImGui::Text("theory: stable while dt < %.4g s", hovered->time_step_limit);
+    if (hovered->computed) {
+      ImGui::Text(hovered->diverged ? "run: diverged at step %ld" : "run: stable for %ld steps",
+                  hovered->step);
+    }
+    ImGui::EndTooltip();
+  }
+}
+
+// Question 4: what the integrator does with the energy (energy.hpp), frame after frame.
+void show_energy(const scene& the_scene) {
+  const energy_breakdown& energy = the_scene.energy();
+  const std::vector<float>& history = the_scene.energy_history();
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "total %.5g J", energy.total);
+  ImGui::PlotLines("##energy", history.data(), static_cast<int>(history.size()), 0, overlay,
+                   FLT_MAX, FLT_MAX, {ImGui::GetContentRegionAvail().x, 60.0f});
+  ImGui::Text("kinetic %.4g J  gravity %.4g J  spring %.4g J", energy.kinetic, energy.gravity,
+              energy.spring);
+}
+
+void edit_stage(scene& the_scene, user_actions& actions) {
+  constexpr std::array<std::pair<stage_kind, const char*>, 3> stages = {{
+      {stage_kind::spring, "1 spring"},
+      {stage_kind::coupled, "2 coupled"},
+      {stage_kind::cloth, "3 cloth"},
+  }};
+  for (const auto& [stage, label] : stages) {
+    if (stage != stage_kind::spring)
+      ImGui::SameLine();
+    if (ImGui::RadioButton(label, the_scene.stage() == stage))
+      actions.select_stage = stage;
+  }
+}
+
+void edit_simulation_control(simulation_control& control, user_actions& actions) {
+  if (ImGui::Button(control.running ? "Pause (Space)" : "Run (Space)"))
+    actions.toggle_running = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Step (N)"))
+    actions.single_step = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset (R)"))
+    actions.reset = true;
+
+  int mode = static_cast<int>(control.mode);
+  ImGui::RadioButton("real time", &mode, static_cast<int>(time_mode::real_time));
+  ImGui::SameLine();
+  ImGui::RadioButton("fixed steps per frame", &mode, static_cast<int>(time_mode::steps_per_frame));
+  control.mode = static_cast<time_mode>(mode);
+  if (control.mode == time_mode::real_time) {
+    slider("speed (sim s/wall s)", control.real_time_speed, 0.05, 2.0, "%.2f");
+    slider("max steps per frame", control.max_steps_per_frame, 1, 5000);
+    slider("max step time/frame (s)", control.max_simulation_seconds_per_frame, 0.005, 0.5, "%.3f",
+           true);
+  } else {
+    slider("steps per frame", control.steps_per_frame, 1, 500);
+  }
+}
+
+// Question 4: where dt stands against the step-size limit of the stage's stiffest mode
+// (stability.hpp), as a bar that fills up to the limit.
+void show_stability(const stability_estimate& estimate) {
+  const bool unstable = estimate.ratio >= 1.0;
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "dt / limit = %.3g", estimate.ratio);
+  ImGui::PushStyleColor(ImGuiCol_PlotHistogram, unstable ? warning_red : quiet_green);
+  ImGui::ProgressBar(static_cast<float>(std::min(estimate.ratio, 1.0)), {-1.0f, 0.0f}, overlay);
+  ImGui::PopStyleColor();
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled("%s", estimate.explanation.c_str());
+  ImGui::PopTextWrapPos();
+}
+
+// dt, mu, m, g0 and the integrator, which every stage has (model.md, "Common").
+void edit_dynamics(dynamics_parameters& dynamics, double max_time_step) {
+  slider("dt (s)", dynamics.time_step, 1e-4, max_time_step, "%.5f", true);
+  // mu dt stays at most 1 (the damping factor 1 - mu dt must not turn negative) for every dt
+  // of the slider above.
+  slider("damping mu (1/s)", dynamics.damping, 0.0, 1.0 / max_time_step, "%.3f");
+  slider("mass m (kg)", dynamics.mass, 0.01, 10.0, "%.3f", true);
+  slider("gravity g0 (m/s^2)", dynamics.gravity, 0.0, 30.0, "%.2f");
+  if (ImGui::BeginCombo("integrator", std::string(integrator_name(dynamics.integrator)).c_str())) {
+    for (const integrator_kind kind : all_integrators) {
+      if (ImGui::Selectable(std::string(integrator_name(kind)).c_str(),
+                            kind == dynamics.integrator))
+        dynamics.integrator = kind;
+    }
+    ImGui::EndCombo();
+  }
+}
+
+constexpr double max_spring_time_step = 0.1;  // s, spring and chain
+constexpr double max_cloth_time_step = 0.02;  // s
+constexpr double max_stiffness = 1e5;         // N/m: far past every stability limit
+
+void edit_single_spring(single_spring& stage) {
+  if (section("Q2-Q4 spring: dt, K, damping")) {
+    edit_dynamics(stage.parameters.dynamics, max_spring_time_step);
+    slider("stiffness K (N/m)", stage.parameters.stiffness, 0.0, max_stiffness, "%.2f", true);
+    show_stability(estimate_stability(stage));
+  }
+}
+
+void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
+  if (section("Q5 coupled springs: the chain")) {
+    actions.reset |= slider("masses n (rebuilds)", stage.parameters.mass_count, 1, 50);
+  }
+  if (section("Q4 dt, K, damping")) {
+    edit_dynamics(stage.parameters.dynamics, max_spring_time_step);
+    slider("stiffness K (N/m)", stage.parameters.stiffness, 0.0, max_stiffness, "%.2f", true);
+    show_stability(estimate_stability(stage));
+  }
+}
+
+void edit_cloth(spring_mesh& stage, render_settings& display, user_actions& actions) {
+  cloth_parameters& p = stage.parameters;
+  if (section("Q4 dt, damping")) {
+    edit_dynamics(p.dynamics, max_cloth_time_step);
+    show_stability(estimate_stability(stage));
+  }
+  if (section("Q8 springs: three stiffnesses")) {
+    slider("K_struct (N/m)", p.structural_stiffness, 0.0, max_stiffness, "%.1f", true);
+    slider("K_shear (N/m)", p.shear_stiffness, 0.0, max_stiffness, "%.1f", true);
+    slider("K_bend (N/m)", p.bending_stiffness, 0.0, max_stiffness, "%.1f", true);
+    ImGui::Checkbox("show the springs, coloured by family", &display.show_springs);
+  }
+  if (section("Q7 pins")) {
+    int pins = p.pins == pin_mode::corners ? 0 : 1;
+    actions.reset |= ImGui::RadioButton("two corners", &pins, 0);
+    ImGui::SameLine();
+    actions.reset |= ImGui::RadioButton("none: free fall (rebuilds)", &pins, 1);
+    p.pins = pins == 0 ? pin_mode::corners : pin_mode::none;
+  }
+  if (section("Q9 ground")) {
+    ImGui::Checkbox("ground plane z = z_g", &p.ground_enabled);
+    slider("height z_g (m)", p.ground_height, -3.0, 0.5, "%.2f");
+    // mu_g dt <= 1 for every dt of the cloth's slider.
+    slider("friction mu_g (1/s)", p.ground_friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
+  }
+  if (section("Q10 resolution")) {
+    actions.reset |= slider("grid N (rebuilds)", p.grid_size, 2, 100);
+    actions.reset |= slider("side S (m, rebuilds)", p.side_length, 0.2, 4.0, "%.2f");
+    int scaling = static_cast<int>(p.scaling);
+    ImGui::RadioButton("per particle (handout)", &scaling,
+                       static_cast<int>(resolution_scaling::per_particle));
+    ImGui::SameLine();
+    ImGui::RadioButton("resolution-independent", &scaling,
+                       static_cast<int>(resolution_scaling::resolution_independent));
+    p.scaling = static_cast<resolution_scaling>(scaling);
+    if (p.scaling == resolution_scaling::resolution_independent)
+      slider("reference grid N_ref", p.reference_grid_size, 2, 100);
+    // What the simulation really uses at this N (parameters.hpp).
+    const cloth_parameters effective = effective_cloth_parameters(p);
+    ImGui::Text("h = S/(N-1) = %.4g m, %d particles", p.side_length / (p.grid_size - 1),
+                p.grid_size * p.grid_size);
+    ImGui::Text("used: m = %.4g kg, K_bend = %.4g N/m", effective.dynamics.mass,
+                effective.bending_stiffness);
+  }
+  if (section("Q13 wind")) {
+    slider("strength K_w (N)", p.wind_strength, 0.0, 50.0, "%.2f");
+    glm::dvec3 direction = p.wind_direction;
+    const double min = -1.0, max = 1.0;
+    ImGui::SliderScalarN("direction u_w", ImGuiDataType_Double, &direction.x, 3, &min, &max, "%.2f",
+                         ImGuiSliderFlags_AlwaysClamp);
+    // u_w is normalised before use: a zero vector has no direction, keep the previous one.
+    if (direction != glm::dvec3(0.0))
+      p.wind_direction = direction;
+  }
+  if (section("Q11-Q12 GPU")) {
+    ImGui::TextDisabled("GPU path not available yet (G)");
+  }
+}
+
+void edit_display(render_settings& display, user_actions& actions) {
+  ImGui::Checkbox("cloth wireframe (W)", &display.wireframe);
+  ImGui::SameLine();
+  ImGui::Checkbox("ground", &display.show_ground);
+  if (ImGui::Button("Reset view (V)"))
+    actions.reset_view = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot (P)"))
+    actions.screenshot = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Keys (H)"))
+    actions.toggle_help = true;
+}
+
+// Over the empty scene of a diverged stage: what happened and what to do.
+void show_divergence_banner(const run_status& status, float panel_covered_width) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos({(panel_covered_width + io.DisplaySize.x) / 2, io.DisplaySize.y * 0.4f},
+                          ImGuiCond_Always, {0.5f, 0.5f});
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav;
+  if (ImGui::Begin("diverged", nullptr, flags)) {
+    ImGui::SetWindowFontScale(1.5f);
+    ImGui::TextColored(warning_red, "diverged at step %ld (t = %.3f s)", status.step, status.time);
+    ImGui::SetWindowFontScale(1.0f);
+    ImGui::TextUnformatted("reduce dt or K, or add damping; R resets the stage");
+  }
+  ImGui::End();
+}
+
+}  // namespace
+
+float build_control_panel(scene& the_scene, user_actions& actions) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos({0.0f, 0.0f}, ImGuiCond_Always);
+  ImGui::SetNextWindowSize({panel_width, io.DisplaySize.y}, ImGuiCond_Always);
+  float covered_width = 0.0f;  // collapsed: the scene takes the whole window
+  if (ImGui::Begin("clothlab: mass-spring lab", nullptr,
+                   ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+    covered_width = panel_width;
+    show_readouts(the_scene);  // always in sight; the sections below scroll
+    ImGui::BeginChild("sections");
+    ImGui::PushItemWidth(-170.0f);  // room for the labels on the right
+    if (section("Q1 stage and time")) {
+      edit_stage(the_scene, actions);
+      edit_simulation_control(the_scene.control, actions);
+    }
+    switch (the_scene.stage()) {
+      case stage_kind::spring:
+        edit_single_spring(the_scene.spring_stage);
+        break;
+      case stage_kind::coupled:
+        edit_coupled_springs(the_scene.chain_stage, actions);
+        break;
+      case stage_kind::cloth:
+        edit_cloth(the_scene.cloth_stage, the_scene.display, actions);
+        break;
+    }
+    if (section("Q4 energy (last frames)"))
+      show_energy(the_scene);
+    if (ImGui::CollapsingHeader("Q4 stability map (dt x K)"))
+      show_stability_map(the_scene);
+    if (section("Display"))
+      edit_display(the_scene.display, actions);
+    ImGui::PopItemWidth();
+    ImGui::EndChild();
+  }
+  ImGui::End();
+
+  if (the_scene.status().diverged)
+    show_divergence_banner(the_scene.status(), covered_width);
+  return covered_width;
+}
+
+void build_key_help(bool& open) {
+  constexpr std::array<std::pair<const char*, const char*>, 13> keys = {{
+      {"1 2 3", "stage: spring, coupled, cloth"},
+      {"Space", "pause / run"},
+      {"N", "one step (pauses)"},
+      {"R", "reset the stage"},
+      {"W", "wireframe"},
+      {"P", "screenshot (PNG in the working directory)"},
+      {"V", "reset the view"},
+      {"H", "this help"},
+      {"G", "GPU path (not available yet)"},
+      {"Esc", "quit"},
+      {"left drag", "orbit"},
+      {"right drag", "pan"},
+      {"wheel", "zoom"},
+  }};
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos({io.DisplaySize.x - 20.0f, 20.0f}, ImGuiCond_Appearing, {1.0f, 0.0f});
+  if (ImGui::Begin("Keys", &open, ImGuiWindowFlags_AlwaysAutoResize)) {
+    for (const auto& [key, meaning] : keys) {
+      ImGui::TextColored(caution_yellow, "%-10s", key);
+      ImGui::SameLine();
+      ImGui::TextUnformatted(meaning);
+    }
+  }
+  ImGui::End();
+}
+
+}  // namespace clothlab

@@ -1,0 +1,138 @@
+// The handout's scene (section 2, question 1): load_model() runs once and sets the initial state
+// of the three stages; draw_scene() runs every frame: it advances the current stage by the
+// number of steps the time mode asks for, then draws it. The four parts of question 3 stay
+// apart: initialisation (load_model), force computation (compute_force), numerical integration
+// (apply_force), display (the renderer, which only reads the state).
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "camera.hpp"
+#include "coupled_springs.hpp"
+#include "energy.hpp"
+#include "options.hpp"
+#include "renderer.hpp"
+#include "scene_framebuffer.hpp"
+#include "single_spring.hpp"
+#include "spring_mesh.hpp"
+#include "stability_map.hpp"
+
+namespace clothlab {
+
+// How many steps a drawn frame advances.
+enum class time_mode {
+  steps_per_frame,  // a fixed number of steps per frame: simulated time runs at the frame rate
+  real_time         // simulated time follows the wall clock (up to max_steps_per_frame)
+};
+
+struct simulation_control {
+  bool running = true;  // Space: pause / run
+  time_mode mode = time_mode::real_time;
+  int steps_per_frame = 10;      // steps_per_frame mode: steps per drawn frame
+  double real_time_speed = 1.0;  // real_time mode: simulated seconds per wall-clock second
+  // real_time mode: a slow machine falls behind real time, it never freezes; a frame stops
+  // stepping at whichever of these two comes first.
+  int max_steps_per_frame = 500;
+  double max_simulation_seconds_per_frame = 0.05;  // s of wall-clock time
+};
+
+// Where one stage's run stands.
+struct run_status {
+  long step = 0;          // steps since load_model (step 0 is the initial state)
+  double time = 0.0;      // t, s: the sum of the dt of every step (dt can change during a run)
+  bool diverged = false;  // divergence_check (stability.hpp) failed: stepping stopped
+  std::string divergence_reason;  // what the check found, e.g. a non-finite velocity
+  bool behind_real_time = false;  // real_time mode: the last frame hit one of its limits
+};
+
+class scene {
+ public:
+  // The three stages with the parameters of the command line; nothing is loaded yet.
+  explicit scene(const options& start);
+
+  // Loads the renderer's shaders and texture (needs the GL context). False with error on failure.
+  bool init_renderer(std::string& error);
+
+  // Initialisation (question 3): the initial state of every stage. Runs once at start.
+  void load_model();
+  // Every frame: advances the current stage by the steps of the time mode, then draws it into
+  // the window's framebuffer, in the width x height area whose left edge is at x = left (the
+  // part the control panel leaves free). frame_seconds: wall-clock time since the last frame.
+  void draw_scene(double frame_seconds, int left, int width, int height);
+
+  // User actions.
+  void select_stage(stage_kind stage);  // keeps each stage's run; the camera takes its view
+  void reset();                         // the current stage back to its initial state
+  void toggle_running() { control.running = !control.running; }
+  void single_step();  // pauses, then advances exactly one step
+  void reset_view() { view = camera::default_for(stage_); }
+
+  stage_kind stage() const { return stage_; }
+  const run_status& status() const { return status_[static_cast<int>(stage_)]; }
+  double current_time_step() const;  // dt of the current stage, s
+  // Question 4: the energies after the last frame's steps, and the total (J) after each of the
+  // last frames since the stage was selected or reset, oldest first.
+  const energy_breakdown& energy() const { return energy_; }
+  const std::vector<float>& energy_history() const { return energy_history_; }
+  double steps_per_second() const { return measured_steps_per_second_; }
+  double frames_per_second() const { return measured_frames_per_second_; }
+
+  // The three stages of the lab; the control panel edits their public `parameters`.
+  single_spring spring_stage;   // stage 1, section 3
+  coupled_springs chain_stage;  // stage 2, question 5
+  spring_mesh cloth_stage;      // stage 3, section 4
+
+  simulation_control control;
+  render_settings display;
+  camera view;
+  stability_map stability_explorer;  // question 4: runs on background threads when started
+
+ private:
+  // Calls f on the object of the current stage (all three have the same step interface).
+  template <class F>
+  decltype(auto) with_current_stage(F&& f) {
+    switch (stage_) {
+      case stage_kind::spring:
+        return f(spring_stage);
+      case stage_kind::coupled:
+        return f(chain_stage);
+      case stage_kind::cloth:
+        break;
+    }
+    return f(cloth_stage);
+  }
+
+  int steps_for_this_frame(double frame_seconds);
+  void simulate(int steps, double wall_clock_budget);
+  void step_current_stage();
+  void draw(int left, int width, int height);
+  void measure_rates(int steps);
+  void record_energy();
+  void restart_energy_history();
+
+  run_status& current_status() { return status_[static_cast<int>(stage_)]; }
+
+  stage_kind stage_;
+  std::array<run_status, 3> status_{};  // indexed by stage_kind
+  bool single_step_requested_ = false;
+  double unsimulated_seconds_ = 0.0;  // real_time mode: wall-clock time not yet simulated
+
+  energy_breakdown energy_;
+  std::vector<float> energy_history_;
+
+  renderer renderer_;
+  scene_framebuffer framebuffer_;
+
+  // Steps and frames counted over about half a second of wall-clock time.
+  using clock = std::chrono::steady_clock;
+  clock::time_point rate_window_start_ = clock::now();
+  long steps_in_rate_window_ = 0;
+  long frames_in_rate_window_ = 0;
+  double measured_steps_per_second_ = 0.0;
+  double measured_frames_per_second_ = 0.0;
+};
+
+}  // namespace clothlab

@@ -1,0 +1,252 @@
+// clothlab-window: the interactive demo of the lab. The same options as `clothlab`
+// (shared/cli.md); it starts on --stage. The main loop below reads top to bottom in five phases:
+// poll, UI, simulate, draw, swap.
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gl.hpp"  // GLEW, which must come before GLFW
+
+#include <GLFW/glfw3.h>
+
+#include "glfw_context.hpp"
+
+#include "options.hpp"
+#include "panel.hpp"
+#include "renderer.hpp"
+#include "scene.hpp"
+
+namespace {
+
+using namespace clothlab;
+
+constexpr int initial_width = 1280;  // screen coordinates
+constexpr int initial_height = 800;
+
+// Dear ImGui with its GLFW and OpenGL 3 backends, for the lifetime of the object.
+class imgui_session {
+ public:
+  explicit imgui_session(GLFWwindow* window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // write no imgui.ini into the working directory
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains to the window's own key callbacks
+    ImGui_ImplOpenGL3_Init("#version 330");
+  }
+  ~imgui_session() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  imgui_session(const imgui_session&) = delete;
+  imgui_session& operator=(const imgui_session&) = delete;
+};
+
+// The keys of the demo (the panel's buttons raise the same actions). None while Dear ImGui is
+// using the keyboard (typing a value into a slider).
+user_actions actions_from_keys(const std::vector<int>& pressed_keys) {
+  user_actions actions;
+  if (ImGui::GetIO().WantCaptureKeyboard)
+    return actions;
+  for (const int key : pressed_keys) {
+    switch (key) {
+      case GLFW_KEY_1:
+        actions.select_stage = stage_kind::spring;
+        break;
+      case GLFW_KEY_2:
+        actions.select_stage = stage_kind::coupled;
+        break;
+      case GLFW_KEY_3:
+        actions.select_stage = stage_kind::cloth;
+        break;
+      case GLFW_KEY_SPACE:
+        actions.toggle_running = !actions.toggle_running;
+        break;
+      case GLFW_KEY_N:
+        actions.single_step = true;
+        break;
+      case GLFW_KEY_R:
+        actions.reset = true;
+        break;
+      case GLFW_KEY_W:
+        actions.toggle_wireframe = !actions.toggle_wireframe;
+        break;
+      case GLFW_KEY_P:
+        actions.screenshot = true;
+        break;
+      case GLFW_KEY_H:
+        actions.toggle_help = !actions.toggle_help;
+        break;
+      case GLFW_KEY_V:
+        actions.reset_view = true;
+        break;
+      case GLFW_KEY_G:
+        actions.gpu = true;
+        break;
+      case GLFW_KEY_ESCAPE:
+        actions.quit = true;
+        break;
+      default:
+        break;
+    }
+  }
+  return actions;
+}
+
+// Orbit (left drag), pan (right drag) and zoom (wheel), unless the mouse is over the panel.
+class mouse_camera_control {
+ public:
+  void update(GLFWwindow* window, double scroll, camera& view) {
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window, &x, &y);
+    const auto dx = static_cast<float>(x - last_x_);
+    const auto dy = static_cast<float>(y - last_y_);
+    last_x_ = x;
+    last_y_ = y;
+    if (ImGui::GetIO().WantCaptureMouse)
+      return;
+    int width = 0, height = 0;
+    glfwGetWindowSize(window, &width, &height);
+    const float pixels = static_cast<float>(height > 0 ? height : 1);
+    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS)
+      view.orbit(-3.0f * dx / pixels, 3.0f * dy / pixels);  // a window height turns ~170 degrees
+    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
+      view.pan(-0.85f * dx / pixels, 0.85f * dy / pixels);  // follows the cursor
+    if (scroll != 0.0)
+      view.zoom(static_cast<float>(std::pow(0.9, scroll)));
+  }
+
+ private:
+  double last_x_ = 0.0;
+  double last_y_ = 0.0;
+};
+
+// clothlab-YYYYMMDD-HHMMSS-<stage>.png in the working directory (-2, -3... if taken).
+std::filesystem::path screenshot_path(stage_kind stage) {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &local);
+  const std::string stem = std::string("clothlab-") + stamp + "-" + std::string(stage_name(stage));
+  std::filesystem::path path = stem + ".png";
+  for (int i = 2; std::filesystem::exists(path); ++i)
+    path = stem + "-" + std::to_string(i) + ".png";
+  return std::filesystem::absolute(path);
+}
+
+// The frame as the user sees it, panel included, read from the back buffer before the swap.
+void save_screenshot(stage_kind stage, int width, int height) {
+  const std::filesystem::path path = screenshot_path(stage);
+  std::string error;
+  if (save_framebuffer_png(path.string(), width, height, error))
+    std::printf("clothlab-window: screenshot %s\n", path.c_str());
+  else
+    std::fprintf(stderr, "clothlab-window: screenshot failed: %s\n", error.c_str());
+  std::fflush(stdout);
+}
+
+void apply_actions(const user_actions& actions, scene& the_scene, bool& show_help,
+                   glfw_context& context) {
+  if (actions.select_stage)
+    the_scene.select_stage(*actions.select_stage);
+  if (actions.reset)
+    the_scene.reset();
+  if (actions.toggle_running)
+    the_scene.toggle_running();
+  if (actions.single_step)
+    the_scene.single_step();
+  if (actions.reset_view)
+    the_scene.reset_view();
+  if (actions.toggle_wireframe)
+    the_scene.display.wireframe = !the_scene.display.wireframe;
+  if (actions.toggle_help)
+    show_help = !show_help;
+  if (actions.gpu) {
+    std::printf("clothlab-window: GPU path not available yet\n");
+    std::fflush(stdout);
+  }
+  if (actions.quit)
+    context.request_close();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const parse_result parsed = parse_command_line(argc, argv);
+  if (!parsed.parsed)
+    return parsed.exit_code;
+  const options& start = *parsed.parsed;
+  if (start.backend == backend_kind::gpu)
+    std::printf("clothlab-window: GPU path not available yet: the cloth runs on the CPU\n");
+
+  std::string error;
+  const auto context = glfw_context::create("clothlab", initial_width, initial_height, error);
+  if (!context) {
+    std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
+    return 1;
+  }
+  std::printf("clothlab-window: %s\n", context->description().c_str());
+  std::fflush(stdout);
+
+  scene the_scene(start);
+  if (!the_scene.init_renderer(error)) {
+    std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
+    return 1;
+  }
+  the_scene.load_model();
+
+  const imgui_session ui(context->window());
+  mouse_camera_control mouse;
+  bool show_help = false;
+  double previous_time = glfwGetTime();
+
+  while (!context->should_close()) {
+    // ---- 1. Poll: window events, keys, mouse ----
+    const window_input input = context->poll_events();
+    if (context->is_minimised()) {
+      context->wait_events();  // nothing to draw: sleep until the window comes back
+      previous_time = glfwGetTime();
+      continue;
+    }
+    const double now = glfwGetTime();
+    const double frame_seconds = now - previous_time;
+    previous_time = now;
+    user_actions actions = actions_from_keys(input.pressed_keys);
+    mouse.update(context->window(), input.scroll, the_scene.view);
+
+    // ---- 2. UI: the panel edits the parameters; actions from keys and buttons applied ----
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    const float panel_covered_width = build_control_panel(the_scene, actions);
+    if (show_help)
+      build_key_help(show_help);
+    ImGui::Render();
+    apply_actions(actions, the_scene, show_help, *context);
+
+    // ---- 3. Simulate and 4. draw: the handout's draw_scene, then the panel over it ----
+    const int width = context->framebuffer_width();
+    const int height = context->framebuffer_height();
+    const ImVec2 pixels_per_unit = ImGui::GetIO().DisplayFramebufferScale;  // HiDPI
+    const int scene_left =
+        std::min(static_cast<int>(panel_covered_width * pixels_per_unit.x), width - 1);
+    the_scene.draw_scene(frame_seconds, scene_left, width - scene_left, height);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (actions.screenshot)
+      save_screenshot(the_scene.stage(), width, height);
+
+    // ---- 5. Swap ----
+    context->swap_buffers();
+  }
+  return 0;
+}

@@ -1,0 +1,139 @@
+#!/usr/bin/env bash
+# Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
+# does. Every wait has a timeout, so that the test fails instead of hanging.
+#   window_test.sh PATH/TO/clothlab-window keys|divergence
+set -euo pipefail
+
+program=$(realpath "$1")
+scenario=${2:-keys}
+
+fail() {
+  echo "window test ($scenario): FAIL: $*" >&2
+  if [ -f window.log ]; then
+    echo "--- clothlab-window's output:" >&2
+    cat window.log >&2
+  fi
+  exit 1
+}
+
+# Outside the virtual X server: check the tools, then run this script again inside one, in a
+# temporary working directory (the screenshots land there).
+if [ -z "${CLOTHLAB_WINDOW_TEST_INSIDE_XVFB:-}" ]; then
+  for tool in xvfb-run xauth xdotool identify; do
+    command -v "$tool" >/dev/null ||
+      fail "$tool is missing: install xvfb, xauth, xdotool and imagemagick (scripts/setup.sh does)"
+  done
+  workdir=$(mktemp -d)
+  trap 'rm -rf "$workdir"' EXIT
+  cd "$workdir"
+  status=0
+  CLOTHLAB_WINDOW_TEST_INSIDE_XVFB=1 timeout 200 \
+    xvfb-run -a -s "-screen 0 1280x800x24" bash "$(realpath "$0")" "$program" "$scenario" ||
+    status=$?
+  [ "$status" -eq 124 ] && fail "timed out after 200 s"
+  exit "$status"
+fi
+
+arguments=()
+if [ "$scenario" = divergence ]; then
+  # Explicit Euler without damping grows by sqrt(1 + (dt omega)^2) = 3.7 per step here.
+  arguments=(--stage spring --integrator explicit --K 5000 --dt 0.05 --mu 0)
+fi
+"$program" "${arguments[@]}" >window.log 2>&1 &
+pid=$!
+
+window=$(timeout 30 xdotool search --sync --onlyvisible --name '^clothlab$' | head -n 1) ||
+  fail "no window named clothlab appeared within 30 s"
+[ -n "$window" ] || fail "no window named clothlab appeared"
+timeout 10 xdotool windowfocus --sync "$window" || fail "cannot focus the window"
+sleep 1
+
+still_running() {
+  kill -0 "$pid" 2>/dev/null || fail "clothlab-window exited (or crashed) after: $1"
+}
+
+press() {
+  timeout 10 xdotool key --clearmodifiers "$1" || fail "xdotool key $1 failed"
+  sleep 0.7
+  still_running "key $1"
+}
+
+# The screenshot key P writes clothlab-YYYYMMDD-HHMMSS-<stage>.png; waits for it.
+screenshot_of() {
+  local stage=$1 before after file
+  before=$(ls clothlab-*-"$stage"*.png 2>/dev/null | wc -l)
+  press p
+  for _ in $(seq 40); do
+    after=$(ls clothlab-*-"$stage"*.png 2>/dev/null | wc -l)
+    [ "$after" -gt "$before" ] && break
+    sleep 0.25
+  done
+  file=$(ls -t clothlab-*-"$stage"*.png 2>/dev/null | head -n 1)
+  [ -n "$file" ] && [ "$after" -gt "$before" ] || fail "P wrote no clothlab-*-$stage.png"
+  echo "$file"
+}
+
+# A PNG of width x height that shows something: at least min_colours colours and a spread of
+# intensities (a blank or black frame has one colour and no spread).
+check_image() {
+  local file=$1 width=$2 height=$3 min_colours=$4 size colours spread
+  size=$(identify -format "%w %h" "$file") || fail "$file is not a readable image"
+  [ "$size" = "$width $height" ] || fail "$file is $size, expected the window's $width $height"
+  colours=$(identify -format "%k" "$file")
+  [ "$colours" -ge "$min_colours" ] || fail "$file looks blank: only $colours colours"
+  spread=$(identify -format "%[fx:standard_deviation]" "$file")
+  awk -v s="$spread" 'BEGIN { exit !(s > 0.02) }' || fail "$file looks blank: deviation $spread"
+  echo "window test: $file: $size, $colours colours, deviation $spread"
+}
+
+case "$scenario" in
+  keys)
+    press 1
+    check_image "$(screenshot_of spring)" 1280 800 200
+    press 2
+    check_image "$(screenshot_of coupled)" 1280 800 200
+    press 3
+    press space  # pause
+    press n      # one step
+    press w      # wireframe
+    press h      # key help
+    press v      # reset view
+    press g      # reserved for the GPU path
+    grep -q "GPU path not available yet" window.log || fail "G printed nothing"
+    timeout 10 xdotool windowsize --sync "$window" 900 600 || fail "cannot resize the window"
+    sleep 1
+    still_running "resize to 900 x 600"
+    check_image "$(screenshot_of cloth)" 900 600 200
+    ;;
+  divergence)
+    for _ in $(seq 40); do
+      grep -q "diverged at step" window.log && break
+      sleep 0.25
+    done
+    grep -q "the spring stage diverged at step" window.log ||
+      fail "explicit Euler with K = 5000, dt = 0.05 did not report a divergence"
+    still_running "the divergence"
+    # Nothing is drawn for the diverged stage: the panel (with its red message) on the background.
+    check_image "$(screenshot_of spring)" 1280 800 20
+    press r  # reset: the run starts again, and diverges again
+    for _ in $(seq 40); do
+      [ "$(grep -c "diverged at step" window.log)" -ge 2 ] && break
+      sleep 0.25
+    done
+    [ "$(grep -c "diverged at step" window.log)" -ge 2 ] || fail "R did not restart the run"
+    ;;
+  *)
+    fail "unknown scenario $scenario (keys or divergence)"
+    ;;
+esac
+
+timeout 10 xdotool key --clearmodifiers Escape || fail "xdotool key Escape failed"
+for _ in $(seq 40); do
+  kill -0 "$pid" 2>/dev/null || break
+  sleep 0.25
+done
+kill -0 "$pid" 2>/dev/null && { kill "$pid"; fail "Esc did not close the window within 10 s"; }
+status=0
+wait "$pid" || status=$?
+[ "$status" -eq 0 ] || fail "clothlab-window exited with status $status after Esc (expected 0)"
+echo "window test ($scenario): PASS"
