@@ -10,7 +10,7 @@ packages=(
   build-essential cmake pkg-config clang-format
   libglfw3-dev libglew-dev libglm-dev libimgui-dev libstb-dev libosmesa6-dev
   libcli11-dev libgtest-dev libbenchmark-dev
-  xvfb xauth xdotool imagemagick
+  libgl1-mesa-dri xvfb xauth xdotool imagemagick
 )
 
 missing=()
