@@ -72,10 +72,13 @@ force_model spring_mesh::forces(const std::array<spring_set, 3>& sets) {
   force_model model{sets, {}};
   if (parameters.wind_strength != 0.0) {
     model.add_other_forces = [this](std::span<const double> position, std::span<double> force) {
-      stage_normals_.resize(position.size());
-      compute_vertex_normals(grid_size_, position, stage_normals_);
-      accumulate_wind_forces(parameters.wind_strength, parameters.wind_direction, stage_normals_,
-                             force);
+      // The normals of the positions the forces are evaluated at: at the current state they are
+      // the cloth's own normals(), at an integrator's intermediate state a scratch array.
+      const bool current_state = position.data() == particles_.position.data();
+      std::vector<double>& normal = current_state ? normals_ : stage_normals_;
+      normal.resize(position.size());
+      compute_vertex_normals(grid_size_, position, normal);
+      accumulate_wind_forces(parameters.wind_strength, parameters.wind_direction, normal, force);
     };
   }
   return model;
@@ -128,10 +131,10 @@ void spring_mesh::compute_normals() {
 }
 
 void spring_mesh::compute_force() {
-  // Normals from the positions at the start of the step (for drawing; the wind recomputes
-  // those of the positions it is evaluated at, here the same ones).
-  compute_normals();
-  // The springs of the three families, then the wind.
+  // The springs of the three families, then the wind with the normals of the positions at the
+  // start of the step (which it computes into normals(); without wind, compute them here).
+  if (parameters.wind_strength == 0.0)
+    compute_normals();
   const std::array<spring_set, 3> sets = spring_sets();
   evaluate_forces(forces(sets), particles_.position, particles_.force);
 }
