@@ -225,9 +225,12 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       if (!integrator.empty())
         d->integrator = *parse_integrator(integrator);
     }
-    if (!scaling.empty()) cloth.scaling = *parse_resolution_scaling(scaling);
-    if (!sweep_dt.empty()) o.sweep_time_steps = parse_list("--sweep-dt", sweep_dt);
-    if (!sweep_k.empty()) o.sweep_stiffnesses = parse_list("--sweep-K", sweep_k);
+    if (!scaling.empty())
+      cloth.scaling = *parse_resolution_scaling(scaling);
+    if (!sweep_dt.empty())
+      o.sweep_time_steps = parse_list("--sweep-dt", sweep_dt);
+    if (!sweep_k.empty())
+      o.sweep_stiffnesses = parse_list("--sweep-K", sweep_k);
     if (!sweep_n.empty()) {
       for (double n : parse_list("--sweep-N", sweep_n)) {
         require(n == std::floor(n) && n >= 1 && n <= max_grid_size, "--sweep-N", n,

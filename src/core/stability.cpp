@@ -180,11 +180,12 @@ stability_estimate estimate_stability(const particle_system& particles,
                   "(omega_max <= %.4g rad/s): add damping mu > omega^2 dt",
                   name.c_str(), estimate.omega_max);
   } else {
-    std::snprintf(line, sizeof line,
-                  "%s: stable while dt < %s (omega_max <= %.4g rad/s); dt = %s is %.3g x the limit%s",
-                  name.c_str(), format_seconds(estimate.time_step_limit).c_str(),
-                  estimate.omega_max, format_seconds(dt).c_str(), estimate.ratio,
-                  estimate.ratio >= 1 ? ": expect divergence, lower dt or K" : "");
+    std::snprintf(
+        line, sizeof line,
+        "%s: stable while dt < %s (omega_max <= %.4g rad/s); dt = %s is %.3g x the limit%s",
+        name.c_str(), format_seconds(estimate.time_step_limit).c_str(), estimate.omega_max,
+        format_seconds(dt).c_str(), estimate.ratio,
+        estimate.ratio >= 1 ? ": expect divergence, lower dt or K" : "");
   }
   estimate.explanation = line;
   return estimate;

@@ -13,6 +13,7 @@
 #include "camera.hpp"
 #include "coupled_springs.hpp"
 #include "energy.hpp"
+#include "gpu_cloth.hpp"
 #include "options.hpp"
 #include "renderer.hpp"
 #include "scene_framebuffer.hpp"
@@ -37,6 +38,22 @@ struct simulation_control {
   // stepping at whichever of these two comes first.
   int max_steps_per_frame = 500;
   double max_simulation_seconds_per_frame = 0.05;  // s of wall-clock time
+};
+
+// Where the cloth is simulated (questions 11 and 12): on the CPU in double precision
+// (spring_mesh), or on the GPU in single precision, in fragment shaders (gpu_cloth).
+enum class cloth_backend { cpu, gpu };
+const char* backend_name(cloth_backend backend);  // "CPU", "GPU"
+
+// Question 12: steps per second of both paths for the same cloth, measured on copies of the
+// current state (scene::measure_both_backends), so that the live run is not disturbed.
+struct backend_comparison {
+  bool measured = false;
+  int grid_size = 0;  // N of the measured cloth
+  int steps = 0;      // steps timed on each path
+  double cpu_steps_per_second = 0.0;
+  double gpu_steps_per_second = 0.0;  // 0 when the GPU could not run it (gpu_error says why)
+  std::string gpu_error;
 };
 
 // Where one stage's run stands.
@@ -80,6 +97,24 @@ class scene {
   double steps_per_second() const { return measured_steps_per_second_; }
   double frames_per_second() const { return measured_frames_per_second_; }
 
+  // Questions 11 and 12: the cloth's path. switch_cloth_backend carries the current state across
+  // (CPU -> GPU: gpu_cloth::load; GPU -> CPU: gpu_cloth::read_state), so the cloth goes on from
+  // where it is. It refuses the GPU when the integrator or the grid size cannot run there, and
+  // then says why in backend_message(). Works whatever stage is shown; reset() keeps the path.
+  void switch_cloth_backend(cloth_backend target);
+  void toggle_cloth_backend();
+  cloth_backend backend() const { return backend_; }
+  // True when the cloth as now set up can run on the GPU; otherwise false with the reason.
+  bool gpu_can_run(std::string& why) const;
+  // The last switch, refusal or fallback to the CPU, as a sentence ("" before any).
+  const std::string& backend_message() const { return backend_message_; }
+  // Steps per second of the live path's stepping alone (not drawing nor the panel), measured
+  // continuously over about half a second; for the GPU, between two glFinish.
+  double stepping_rate() const { return measured_stepping_rate_; }
+  // Question 12: times `steps` steps of each path on copies of the current cloth.
+  void measure_both_backends(int steps);
+  const backend_comparison& comparison() const { return comparison_; }
+
   // The three stages of the lab; the control panel edits their public `parameters`.
   single_spring spring_stage;   // stage 1, section 3
   coupled_springs chain_stage;  // stage 2, question 5
@@ -109,7 +144,10 @@ class scene {
   void simulate(int steps, double wall_clock_budget);
   void step_current_stage();
   void draw(int left, int width, int height);
-  void measure_rates(int steps);
+  void measure_rates(int steps, double stepping_seconds);
+  bool cloth_on_gpu() const { return stage_ == stage_kind::cloth && backend_ == cloth_backend::gpu; }
+  void fall_back_to_cpu(const std::string& reason);
+  void check_gpu_cloth();
   void record_energy();
   void restart_energy_history();
 
@@ -133,6 +171,16 @@ class scene {
   long frames_in_rate_window_ = 0;
   double measured_steps_per_second_ = 0.0;
   double measured_frames_per_second_ = 0.0;
+  double stepping_seconds_in_rate_window_ = 0.0;
+  double measured_stepping_rate_ = 0.0;
+
+  // The GPU path (questions 11 and 12). While backend_ is gpu, gpu_ holds the cloth's state and
+  // cloth_stage holds a copy read back once per frame, for the divergence check, the energy and
+  // the springs overlay.
+  cloth_backend backend_ = cloth_backend::cpu;
+  gpu_cloth gpu_;
+  std::string backend_message_;
+  backend_comparison comparison_;
 };
 
 }  // namespace clothlab
