@@ -7,7 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build_type=${1:-Release}
 
 packages=(
-  build-essential cmake pkg-config clang-format
+  build-essential cmake pkg-config clang-format python3
   libglfw3-dev libglew-dev libglm-dev libimgui-dev libstb-dev libosmesa6-dev
   libcli11-dev libgtest-dev libbenchmark-dev
   libgl1-mesa-dri xvfb xauth xdotool imagemagick

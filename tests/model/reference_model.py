@@ -1,0 +1,60 @@
+"""An independent implementation of shared/model.md: pure Python, doubles, written from the
+contract's text alone and sharing no code with clothlab (test_against_reference.py compares the
+two, step by step, particle by particle)."""
+import math
+def sub(a,b): return [a[0]-b[0],a[1]-b[1],a[2]-b[2]]
+def cross(a,b): return [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]]
+def norm(a): return math.sqrt(a[0]*a[0]+a[1]*a[1]+a[2]*a[2])
+def run(stage, steps, dt=None, K=20.0, Ks=5000., Ksh=2000., Kb=500., mu=None, m=1.0, g0=9.8, integ='semi-implicit',
+        chain=2, N=20, S=1.0, pins=True, Kw=0.0, wdir=(0,1,0), ground=-1.0, mug=2.0):
+    if dt is None: dt = 0.002 if stage=='cloth' else 0.01
+    if mu is None: mu = 0.5 if stage=='cloth' else 0.2
+    P=[];V=[];fixed=[];springs=[]
+    if stage in ('spring','coupled'):
+        n = 1 if stage=='spring' else chain
+        p0=[0.1,0.0,1.0]
+        for i in range(n+1):
+            P.append([p0[0],p0[1],p0[2]+i*-0.5]); V.append([0.,0.,0.]); fixed.append(i==0)
+        V[n]=[1.,-1.,0.]
+        for i in range(1,n+1): springs.append((i-1,i,norm(sub(P[i],P[i-1])),K))
+    else:
+        h=S/(N-1)
+        for kv in range(N):
+            for ku in range(N):
+                P.append([-S/2+ku*h,-S/2+kv*h,0.0]); V.append([0.,0.,0.]); fixed.append(False)
+        if pins: fixed[0]=True; fixed[N-1]=True
+        idx=lambda u,v:u+N*v
+        for kv in range(N):
+            for ku in range(N):
+                for (du,dv,k) in ((1,0,Ks),(0,1,Ks),(1,1,Ksh),(2,0,Kb),(0,2,Kb)):
+                    u2,v2=ku+du,kv+dv
+                    if u2<N and v2<N: a,b=idx(ku,kv),idx(u2,v2); springs.append((a,b,norm(sub(P[a],P[b])),k))
+                # the other diagonal (ku+1,kv)-(ku,kv+1)
+                if ku+1<N and kv+1<N: a,b=idx(ku+1,kv),idx(ku,kv+1); springs.append((a,b,norm(sub(P[a],P[b])),Ksh))
+    out=[]
+    def record(s):
+        for k in range(len(P)): out.append((s, s*dt, k, *P[k], *V[k]))
+    record(0)
+    wl=norm(wdir); uw=[wdir[0]/wl,wdir[1]/wl,wdir[2]/wl]
+    for s in range(1,steps+1):
+        F=[[0.,0.,0.] for _ in P]
+        for (a,b,L0,k) in springs:
+            d=sub(P[a],P[b]); L=norm(d); c=k*(L0-L)/L
+            for i in range(3): F[a][i]+=c*d[i]; F[b][i]-=c*d[i]
+        if stage=='cloth' and Kw!=0:
+            for kv in range(N):
+                for ku in range(N):
+                    du=sub(P[min(ku+1,N-1)+N*kv],P[max(ku-1,0)+N*kv]); dv=sub(P[ku+N*min(kv+1,N-1)],P[ku+N*max(kv-1,0)])
+                    c=cross(du,dv); l=norm(c); n=[c[0]/l,c[1]/l,c[2]/l]; dd=n[0]*uw[0]+n[1]*uw[1]+n[2]*uw[2]
+                    for i in range(3): F[ku+N*kv][i]+=Kw*dd*n[i]
+        for k in range(len(P)):
+            if fixed[k]: continue
+            a=[F[k][0]/m, F[k][1]/m, F[k][2]/m-g0]
+            if integ=='semi-implicit':
+                for i in range(3): V[k][i]=(1-mu*dt)*V[k][i]+dt*a[i]; P[k][i]=P[k][i]+dt*V[k][i]
+            else:
+                for i in range(3): pn=P[k][i]+dt*V[k][i]; V[k][i]=(1-mu*dt)*V[k][i]+dt*a[i]; P[k][i]=pn
+            if stage=='cloth' and ground is not None and P[k][2]<ground:
+                P[k][2]=ground; V[k][2]=max(V[k][2],0.0); V[k][0]*=(1-mug*dt); V[k][1]*=(1-mug*dt)
+        record(s)
+    return out
