@@ -41,6 +41,12 @@ void show_readouts(const scene& the_scene) {
   const double time_step = the_scene.current_time_step();
   ImGui::Text("%.0f steps/s (%.2fx real time)   %.0f frames/s", the_scene.steps_per_second(),
               the_scene.steps_per_second() * time_step, the_scene.frames_per_second());
+  if (the_scene.stage() == stage_kind::cloth) {
+    if (the_scene.backend() == cloth_backend::gpu)
+      ImGui::TextColored(quiet_green, "cloth on the GPU (float, fragment shaders)   G: CPU");
+    else
+      ImGui::TextUnformatted("cloth on the CPU (double)   G: GPU");
+  }
   if (status.diverged) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(warning_red,
@@ -181,8 +187,9 @@ void show_stability(const stability_estimate& estimate) {
   ImGui::PopTextWrapPos();
 }
 
-// dt, mu, m, g0 and the integrator, which every stage has (model.md, "Common").
-void edit_dynamics(dynamics_parameters& dynamics, double max_time_step) {
+// dt, mu, m, g0 and the integrator, which every stage has (model.md, "Common"). While the cloth
+// runs on the GPU, the integrators the GPU does not have are offered greyed out.
+void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool on_gpu = false) {
   slider("dt (s)", dynamics.time_step, 1e-4, max_time_step, "%.5f", true);
   // mu dt stays at most 1 (the damping factor 1 - mu dt must not turn negative) for every dt
   // of the slider above.
@@ -191,12 +198,18 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step) {
   slider("gravity g0 (m/s^2)", dynamics.gravity, 0.0, 30.0, "%.2f");
   if (ImGui::BeginCombo("integrator", std::string(integrator_name(dynamics.integrator)).c_str())) {
     for (const integrator_kind kind : all_integrators) {
+      std::string why_not;
+      const bool offered = !on_gpu || gpu_cloth::supports_integrator(kind, why_not);
+      ImGui::BeginDisabled(!offered);
       if (ImGui::Selectable(std::string(integrator_name(kind)).c_str(),
                             kind == dynamics.integrator))
         dynamics.integrator = kind;
+      ImGui::EndDisabled();
     }
     ImGui::EndCombo();
   }
+  if (on_gpu)
+    ImGui::TextDisabled("the GPU runs semi-implicit and explicit Euler; the others: G for the CPU");
 }
 
 constexpr double max_spring_time_step = 0.1;  // s, spring and chain
@@ -222,10 +235,57 @@ void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
   }
 }
 
-void edit_cloth(spring_mesh& stage, render_settings& display, user_actions& actions) {
+// Questions 11 and 12: which path runs the cloth, the switch, and both paths' speeds.
+void show_gpu_path(const scene& the_scene, user_actions& actions) {
+  const bool on_gpu = the_scene.backend() == cloth_backend::gpu;
+  if (ImGui::RadioButton("CPU (double)", !on_gpu) && on_gpu)
+    actions.switch_cloth_backend = true;
+  ImGui::SameLine();
+  if (ImGui::RadioButton("GPU (float, fragment shaders)", on_gpu) && !on_gpu)
+    actions.switch_cloth_backend = true;
+  ImGui::PushTextWrapPos(0.0f);
+  if (std::string why; !on_gpu && !the_scene.gpu_can_run(why))
+    ImGui::TextColored(caution_yellow, "Not on the GPU: %s", why.c_str());
+  if (!the_scene.backend_message().empty())
+    ImGui::TextDisabled("%s", the_scene.backend_message().c_str());
+
+  ImGui::Text("live: %s, %.0f steps/s (stepping alone)", backend_name(the_scene.backend()),
+              the_scene.stepping_rate());
+  if (ImGui::Button("Measure both (200 steps each, on copies)"))
+    actions.measure_backends = true;
+  const backend_comparison& comparison = the_scene.comparison();
+  if (comparison.measured) {
+    if (comparison.gpu_steps_per_second > 0.0) {
+      ImGui::Text("N = %d   steps/s CPU: %.0f   GPU: %.0f   (GPU/CPU = %.2f x)",
+                  comparison.grid_size, comparison.cpu_steps_per_second,
+                  comparison.gpu_steps_per_second,
+                  comparison.gpu_steps_per_second / comparison.cpu_steps_per_second);
+    } else {
+      ImGui::Text("N = %d   steps/s CPU: %.0f   GPU: -", comparison.grid_size,
+                  comparison.cpu_steps_per_second);
+      ImGui::TextColored(warning_red, "%s", comparison.gpu_error.c_str());
+    }
+    if (comparison.grid_size != the_scene.cloth_stage.grid_size())
+      ImGui::TextDisabled("measured for another N: measure again");
+  }
+  ImGui::TextDisabled(
+      "Q11: every particle is one texel of N x N float (RGBA32F) textures: positions (w: "
+      "pinned) and velocities, two copies each that swap after every step (ping-pong), and the "
+      "normals. The simulation runs in fragment shaders: a triangle covering an N x N viewport "
+      "runs one fragment per particle, which sums its springs, gravity and wind, integrates, "
+      "applies the ground and writes the new state into the other copy; a second pass writes the "
+      "normals. The CPU sends a flat N x N grid once; the vertex shader fetches each vertex's "
+      "position and normal from the textures. The state comes back to the CPU once per frame, "
+      "for the divergence check and the energy.");
+  ImGui::PopTextWrapPos();
+}
+
+void edit_cloth(scene& the_scene, user_actions& actions) {
+  spring_mesh& stage = the_scene.cloth_stage;
+  render_settings& display = the_scene.display;
   cloth_parameters& p = stage.parameters;
   if (section("Q4 dt, damping")) {
-    edit_dynamics(p.dynamics, max_cloth_time_step);
+    edit_dynamics(p.dynamics, max_cloth_time_step, the_scene.backend() == cloth_backend::gpu);
     show_stability(estimate_stability(stage));
   }
   if (section("Q8 springs: three stiffnesses")) {
@@ -276,9 +336,8 @@ void edit_cloth(spring_mesh& stage, render_settings& display, user_actions& acti
     if (direction != glm::dvec3(0.0))
       p.wind_direction = direction;
   }
-  if (section("Q11-Q12 GPU")) {
-    ImGui::TextDisabled("GPU path not available yet (G)");
-  }
+  if (section("Q11-Q12 GPU"))
+    show_gpu_path(the_scene, actions);
 }
 
 void edit_display(render_settings& display, user_actions& actions) {
@@ -338,7 +397,7 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
         edit_coupled_springs(the_scene.chain_stage, actions);
         break;
       case stage_kind::cloth:
-        edit_cloth(the_scene.cloth_stage, the_scene.display, actions);
+        edit_cloth(the_scene, actions);
         break;
     }
     if (section("Q4 energy (last frames)"))
@@ -367,7 +426,7 @@ void build_key_help(bool& open) {
       {"P", "screenshot (PNG in the working directory)"},
       {"V", "reset the view"},
       {"H", "this help"},
-      {"G", "GPU path (not available yet)"},
+      {"G", "cloth: switch CPU <-> GPU path"},
       {"Esc", "quit"},
       {"left drag", "orbit"},
       {"right drag", "pan"},

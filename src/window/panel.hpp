@@ -19,10 +19,12 @@ struct user_actions {
   bool toggle_wireframe = false;           // W
   bool screenshot = false;                 // P
   bool toggle_help = false;                // H
-  bool gpu = false;                        // G, reserved for the GPU path
+  bool switch_cloth_backend = false;       // G: the cloth CPU <-> GPU (questions 11, 12)
+  bool measure_backends = false;           // question 12: time both paths on copies
   bool quit = false;                       // Esc
 };
 
+inline constexpr int steps_per_backend_measurement = 200;  // question 12's "measure both"
 inline constexpr float panel_width = 410.0f;  // in ImGui's (screen) units, at the window's left
 
 // Builds this frame's panel at the window's left. Parameters and the simulation control are

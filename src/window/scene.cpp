@@ -10,6 +10,23 @@
 
 namespace clothlab {
 
+namespace {
+
+// Real time on the GPU path: the GPU runs the submitted steps later than the CPU submits them,
+// so the frame's wall-clock budget is checked after a glFinish, once every this many steps
+// (a finish after every step would measure the synchronisation more than the steps).
+constexpr int gpu_steps_between_budget_checks = 8;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+const char* backend_name(cloth_backend backend) {
+  return backend == cloth_backend::gpu ? "GPU" : "CPU";
+}
+
 scene::scene(const options& start)
     : spring_stage(start.spring),
       chain_stage(start.coupled),
@@ -28,6 +45,7 @@ void scene::load_model() {
   chain_stage.load_model();
   cloth_stage.load_model();
   status_ = {};
+  reload_gpu_cloth();
   unsimulated_seconds_ = 0.0;
   restart_energy_history();
 }
@@ -35,6 +53,8 @@ void scene::load_model() {
 void scene::reset() {
   with_current_stage([](auto& stage) { stage.load_model(); });
   current_status() = {};
+  if (stage_ == stage_kind::cloth)
+    reload_gpu_cloth();  // the reset keeps the path
   unsimulated_seconds_ = 0.0;
   restart_energy_history();
 }
@@ -44,6 +64,95 @@ void scene::select_stage(stage_kind stage) {
   view = camera::default_for(stage);
   unsimulated_seconds_ = 0.0;
   restart_energy_history();
+}
+
+// ---- The cloth's path: CPU or GPU (questions 11 and 12) ---------------------------------
+
+bool scene::gpu_can_run(std::string& why) const {
+  return gpu_cloth::supports_integrator(cloth_stage.parameters.dynamics.integrator, why) &&
+         gpu_cloth::check_grid_size(cloth_stage.grid_size(), why);
+}
+
+void scene::switch_cloth_backend(cloth_backend target) {
+  if (target == backend_)
+    return;
+  const long step = status_[static_cast<int>(stage_kind::cloth)].step;
+  if (target == cloth_backend::gpu) {
+    // The GPU takes the CPU cloth's current state: positions, velocities, pins, rest lengths.
+    std::string why;
+    if (!gpu_can_run(why) || !gpu_.load(cloth_stage, why)) {
+      backend_message_ = "The cloth stays on the CPU: " + why;
+      std::printf("clothlab-window: %s\n", backend_message_.c_str());
+      std::fflush(stdout);
+      return;
+    }
+  } else {
+    gpu_.read_state(cloth_stage);  // the CPU goes on from the GPU's state
+  }
+  backend_ = target;
+  restart_rate_window();  // the stepping rate shown is the new path's
+  backend_message_ = std::string("cloth: ") + backend_name(target == cloth_backend::gpu
+                                                               ? cloth_backend::cpu
+                                                               : cloth_backend::gpu) +
+                     " -> " + backend_name(target) + " at step " + std::to_string(step);
+  std::printf("clothlab-window: %s\n", backend_message_.c_str());
+  std::fflush(stdout);
+}
+
+void scene::toggle_cloth_backend() {
+  switch_cloth_backend(backend_ == cloth_backend::gpu ? cloth_backend::cpu : cloth_backend::gpu);
+}
+
+void scene::fall_back_to_cpu(const std::string& reason) {
+  if (gpu_.is_loaded() && gpu_.grid_size() == cloth_stage.grid_size())
+    gpu_.read_state(cloth_stage);
+  backend_ = cloth_backend::cpu;
+  backend_message_ = "cloth: GPU -> CPU at step " +
+                     std::to_string(status_[static_cast<int>(stage_kind::cloth)].step) + ": " +
+                     reason;
+  std::printf("clothlab-window: %s\n", backend_message_.c_str());
+  std::fflush(stdout);
+}
+
+// After load_model of the cloth: the GPU path takes the new initial state (a new N, S or pins).
+void scene::reload_gpu_cloth() {
+  if (backend_ != cloth_backend::gpu)
+    return;
+  std::string why;
+  if (!gpu_can_run(why) || !gpu_.load(cloth_stage, why)) {
+    backend_ = cloth_backend::cpu;
+    backend_message_ = "The cloth went back to the CPU: " + why;
+    std::printf("clothlab-window: %s\n", backend_message_.c_str());
+    std::fflush(stdout);
+  }
+}
+
+// Question 12: the same number of steps of each path, from the current state, on copies: a
+// spring_mesh copy for the CPU, a second gpu_cloth for the GPU (timed between two glFinish).
+void scene::measure_both_backends(int steps) {
+  if (backend_ == cloth_backend::gpu)
+    gpu_.read_state(cloth_stage);  // the current state, whichever path holds it
+  comparison_ = {};
+  comparison_.measured = true;
+  comparison_.grid_size = cloth_stage.grid_size();
+  comparison_.steps = steps;
+
+  spring_mesh cpu_copy = cloth_stage;
+  const clock::time_point start = clock::now();
+  for (int i = 0; i < steps; ++i)
+    cpu_copy.step();
+  comparison_.cpu_steps_per_second = steps / seconds_since(start);
+
+  std::string why;
+  gpu_cloth gpu_copy;
+  if (gpu_can_run(why) && gpu_copy.load(cloth_stage, why))
+    comparison_.gpu_steps_per_second = 1.0 / gpu_copy.time_steps(cloth_stage.parameters, steps);
+  else
+    comparison_.gpu_error = why;
+  std::printf("clothlab-window: N = %d, %d steps: CPU %.0f steps/s, GPU %.0f steps/s%s%s\n",
+              comparison_.grid_size, steps, comparison_.cpu_steps_per_second,
+              comparison_.gpu_steps_per_second, why.empty() ? "" : ": ", why.c_str());
+  std::fflush(stdout);
 }
 
 double scene::current_time_step() const {
@@ -66,6 +175,13 @@ void scene::single_step() {
 // ---- Every frame: simulation, then display ----------------------------------------------
 
 void scene::draw_scene(double frame_seconds, int left, int width, int height) {
+  if (backend_ == cloth_backend::gpu) {
+    // The integrator can change while the cloth is on the GPU (the command line, or a choice
+    // the panel offers): one the GPU does not run sends the cloth back to the CPU.
+    if (std::string why;
+        !gpu_cloth::supports_integrator(cloth_stage.parameters.dynamics.integrator, why))
+      fall_back_to_cpu(why);
+  }
   const int steps = steps_for_this_frame(frame_seconds);
   const double budget = control.mode == time_mode::real_time
                             ? control.max_simulation_seconds_per_frame
@@ -116,21 +232,46 @@ int scene::steps_for_this_frame(double frame_seconds) {
 }
 
 // Runs the steps, unless the stage diverges or the wall-clock budget is spent first.
+// On the GPU path the steps are timed between two glFinish, so that the GPU's work is counted,
+// not only its submission.
 void scene::simulate(int steps, double wall_clock_budget) {
+  const bool on_gpu = cloth_on_gpu();
+  if (on_gpu)
+    glFinish();  // the previous frame's drawing is not counted as stepping
   const clock::time_point start = clock::now();
+  const auto over_budget = [&](int done) {
+    if (!std::isfinite(wall_clock_budget))
+      return false;
+    if (on_gpu) {
+      if (done % gpu_steps_between_budget_checks != 0)
+        return false;
+      glFinish();
+    }
+    return seconds_since(start) > wall_clock_budget;
+  };
   int done = 0;
   while (done < steps && !current_status().diverged) {
     step_current_stage();
     ++done;
-    const bool over_budget =
-        std::chrono::duration<double>(clock::now() - start).count() > wall_clock_budget;
-    if (over_budget && done < steps) {
+    if (done < steps && over_budget(done)) {
       current_status().behind_real_time = true;
       unsimulated_seconds_ = 0.0;  // the backlog is dropped, as when the step cap is hit
       break;
     }
   }
-  measure_rates(done);
+  if (on_gpu)
+    glFinish();
+  const double stepping_seconds = seconds_since(start);
+  if (on_gpu && done > 0)
+    check_gpu_cloth();
+  measure_rates(done, stepping_seconds);
+}
+
+// The GPU cloth's state comes back once per frame (not per step), for the divergence check, the
+// energy plot and the springs overlay: 2 N^2 RGBA floats, 320 kB at N = 100.
+void scene::check_gpu_cloth() {
+  gpu_.read_state(cloth_stage);
+  report_divergence(divergence_check(cloth_stage));
 }
 
 // One step: force computation, then numerical integration (question 3), then the divergence
@@ -138,17 +279,30 @@ void scene::simulate(int steps, double wall_clock_budget) {
 // a run whose speeds pass far beyond anything a stable run reaches (stability.hpp), so that
 // the explosion is caught before the numbers overflow.
 void scene::step_current_stage() {
-  // Where the cloth's GPU path (questions 11 and 12) is to step instead: for the cloth stage
-  // with the GPU backend, gpu_cloth::step(cloth_stage.parameters) replaces the two calls below,
-  // and gpu_cloth::read_state(cloth_stage) brings the state back for the check.
+  if (cloth_on_gpu()) {
+    // Questions 12 and 13 on the GPU: forces, integrator and ground contact in gpu_step.frag,
+    // then the normals. The check comes after the frame's steps (check_gpu_cloth).
+    gpu_.step(cloth_stage.parameters);
+    count_step(cloth_stage.parameters.dynamics.time_step);
+    return;
+  }
   auto [time_step, check] = with_current_stage([](auto& stage) {
     stage.compute_force();  // forces from the positions at the start of the step
     stage.apply_force();    // integrator (and, for the cloth, the ground contact)
     return std::pair{stage.parameters.dynamics.time_step, divergence_check(stage)};
   });
+  count_step(time_step);
+  report_divergence(std::move(check));
+}
+
+void scene::count_step(double time_step) {
   run_status& status = current_status();
   ++status.step;
   status.time += time_step;
+}
+
+void scene::report_divergence(divergence_status check) {
+  run_status& status = current_status();
   if (check.diverged) {
     status.diverged = true;
     status.divergence_reason = std::move(check.reason);
@@ -179,8 +333,13 @@ void scene::draw(int left, int width, int height) {
         renderer_.draw(chain_stage, view, display, width, height);
         break;
       case stage_kind::cloth:
-        // Where the GPU path is to be drawn instead: renderer::draw_from_textures with the
-        // gpu_cloth's position and normal textures (no copy back to the CPU).
+        if (backend_ == cloth_backend::gpu) {
+          // Question 11: the flat grid's vertex shader fetches positions and normals from the
+          // GPU cloth's textures.
+          renderer_.draw_from_textures(gpu_.position_texture(), gpu_.normal_texture(),
+                                       cloth_stage, view, display, width, height);
+          break;
+        }
         cloth_stage.compute_normals();  // the normals of the positions being drawn
         renderer_.draw(cloth_stage, view, display, width, height);
         break;
@@ -208,15 +367,29 @@ void scene::restart_energy_history() {
   record_energy();
 }
 
-void scene::measure_rates(int steps) {
+void scene::restart_rate_window() {
+  steps_in_rate_window_ = 0;
+  frames_in_rate_window_ = 0;
+  stepping_seconds_in_rate_window_ = 0.0;
+  measured_stepping_rate_ = 0.0;
+  rate_window_start_ = clock::now();
+}
+
+void scene::measure_rates(int steps, double stepping_seconds) {
   steps_in_rate_window_ += steps;
   frames_in_rate_window_ += 1;
-  const double seconds = std::chrono::duration<double>(clock::now() - rate_window_start_).count();
+  stepping_seconds_in_rate_window_ += stepping_seconds;
+  const double seconds = seconds_since(rate_window_start_);
   if (seconds >= 0.5) {
     measured_steps_per_second_ = static_cast<double>(steps_in_rate_window_) / seconds;
     measured_frames_per_second_ = static_cast<double>(frames_in_rate_window_) / seconds;
+    measured_stepping_rate_ =
+        stepping_seconds_in_rate_window_ > 0.0
+            ? static_cast<double>(steps_in_rate_window_) / stepping_seconds_in_rate_window_
+            : 0.0;
     steps_in_rate_window_ = 0;
     frames_in_rate_window_ = 0;
+    stepping_seconds_in_rate_window_ = 0.0;
     rate_window_start_ = clock::now();
   }
 }

@@ -19,6 +19,7 @@
 #include "scene_framebuffer.hpp"
 #include "single_spring.hpp"
 #include "spring_mesh.hpp"
+#include "stability.hpp"
 #include "stability_map.hpp"
 
 namespace clothlab {
@@ -145,8 +146,12 @@ class scene {
   void step_current_stage();
   void draw(int left, int width, int height);
   void measure_rates(int steps, double stepping_seconds);
+  void restart_rate_window();
   bool cloth_on_gpu() const { return stage_ == stage_kind::cloth && backend_ == cloth_backend::gpu; }
+  void count_step(double time_step);
+  void report_divergence(divergence_status check);
   void fall_back_to_cpu(const std::string& reason);
+  void reload_gpu_cloth();
   void check_gpu_cloth();
   void record_energy();
   void restart_energy_history();

@@ -90,7 +90,7 @@ user_actions actions_from_keys(const std::vector<int>& pressed_keys) {
         actions.reset_view = true;
         break;
       case GLFW_KEY_G:
-        actions.gpu = true;
+        actions.switch_cloth_backend = !actions.switch_cloth_backend;
         break;
       case GLFW_KEY_ESCAPE:
         actions.quit = true;
@@ -171,10 +171,10 @@ void apply_actions(const user_actions& actions, scene& the_scene, bool& show_hel
     the_scene.display.wireframe = !the_scene.display.wireframe;
   if (actions.toggle_help)
     show_help = !show_help;
-  if (actions.gpu) {
-    std::printf("clothlab-window: GPU path not available yet\n");
-    std::fflush(stdout);
-  }
+  if (actions.switch_cloth_backend)
+    the_scene.toggle_cloth_backend();
+  if (actions.measure_backends)
+    the_scene.measure_both_backends(steps_per_backend_measurement);
   if (actions.quit)
     context.request_close();
 }
@@ -186,8 +186,6 @@ int main(int argc, char** argv) {
   if (!parsed.parsed)
     return parsed.exit_code;
   const options& start = *parsed.parsed;
-  if (start.backend == backend_kind::gpu)
-    std::printf("clothlab-window: GPU path not available yet: the cloth runs on the CPU\n");
 
   std::string error;
   const auto context = glfw_context::create("clothlab", initial_width, initial_height, error);
@@ -204,6 +202,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   the_scene.load_model();
+  if (start.backend == backend_kind::gpu)
+    the_scene.switch_cloth_backend(cloth_backend::gpu);  // says why when it cannot
 
   const imgui_session ui(context->window());
   mouse_camera_control mouse;
