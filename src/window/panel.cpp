@@ -208,8 +208,11 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool on_
     }
     ImGui::EndCombo();
   }
-  if (on_gpu)
+  if (on_gpu) {
+    ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabled("the GPU runs semi-implicit and explicit Euler; the others: G for the CPU");
+    ImGui::PopTextWrapPos();
+  }
 }
 
 constexpr double max_spring_time_step = 0.1;  // s, spring and chain
@@ -251,7 +254,10 @@ void show_gpu_path(const scene& the_scene, user_actions& actions) {
 
   ImGui::Text("live: %s, %.0f steps/s (stepping alone)", backend_name(the_scene.backend()),
               the_scene.stepping_rate());
-  if (ImGui::Button("Measure both (200 steps each, on copies)"))
+  const std::string measure_label =
+      "Measure both (M): " + std::to_string(steps_per_backend_measurement) +
+      " steps each, on copies";
+  if (ImGui::Button(measure_label.c_str()))
     actions.measure_backends = true;
   const backend_comparison& comparison = the_scene.comparison();
   if (comparison.measured) {
@@ -417,7 +423,7 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
 }
 
 void build_key_help(bool& open) {
-  constexpr std::array<std::pair<const char*, const char*>, 13> keys = {{
+  constexpr std::array<std::pair<const char*, const char*>, 14> keys = {{
       {"1 2 3", "stage: spring, coupled, cloth"},
       {"Space", "pause / run"},
       {"N", "one step (pauses)"},
@@ -427,6 +433,7 @@ void build_key_help(bool& open) {
       {"V", "reset the view"},
       {"H", "this help"},
       {"G", "cloth: switch CPU <-> GPU path"},
+      {"M", "cloth: measure CPU and GPU steps/s"},
       {"Esc", "quit"},
       {"left drag", "orbit"},
       {"right drag", "pan"},

@@ -89,12 +89,11 @@ void scene::switch_cloth_backend(cloth_backend target) {
   } else {
     gpu_.read_state(cloth_stage);  // the CPU goes on from the GPU's state
   }
+  const cloth_backend from = backend_;
   backend_ = target;
   restart_rate_window();  // the stepping rate shown is the new path's
-  backend_message_ = std::string("cloth: ") + backend_name(target == cloth_backend::gpu
-                                                               ? cloth_backend::cpu
-                                                               : cloth_backend::gpu) +
-                     " -> " + backend_name(target) + " at step " + std::to_string(step);
+  backend_message_ = std::string("cloth: ") + backend_name(from) + " -> " + backend_name(target) +
+                     " at step " + std::to_string(step);
   std::printf("clothlab-window: %s\n", backend_message_.c_str());
   std::fflush(stdout);
 }
@@ -336,8 +335,8 @@ void scene::draw(int left, int width, int height) {
         if (backend_ == cloth_backend::gpu) {
           // Question 11: the flat grid's vertex shader fetches positions and normals from the
           // GPU cloth's textures.
-          renderer_.draw_from_textures(gpu_.position_texture(), gpu_.normal_texture(),
-                                       cloth_stage, view, display, width, height);
+          renderer_.draw_from_textures(gpu_.position_texture(), gpu_.normal_texture(), cloth_stage,
+                                       view, display, width, height);
           break;
         }
         cloth_stage.compute_normals();  // the normals of the positions being drawn

@@ -147,7 +147,9 @@ class scene {
   void draw(int left, int width, int height);
   void measure_rates(int steps, double stepping_seconds);
   void restart_rate_window();
-  bool cloth_on_gpu() const { return stage_ == stage_kind::cloth && backend_ == cloth_backend::gpu; }
+  bool cloth_on_gpu() const {
+    return stage_ == stage_kind::cloth && backend_ == cloth_backend::gpu;
+  }
   void count_step(double time_step);
   void report_divergence(divergence_status check);
   void fall_back_to_cpu(const std::string& reason);

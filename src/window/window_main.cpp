@@ -92,6 +92,9 @@ user_actions actions_from_keys(const std::vector<int>& pressed_keys) {
       case GLFW_KEY_G:
         actions.switch_cloth_backend = !actions.switch_cloth_backend;
         break;
+      case GLFW_KEY_M:
+        actions.measure_backends = true;
+        break;
       case GLFW_KEY_ESCAPE:
         actions.quit = true;
         break;

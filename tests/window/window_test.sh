@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
-#   window_test.sh PATH/TO/clothlab-window keys|divergence
+#   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -38,6 +38,8 @@ arguments=()
 if [ "$scenario" = divergence ]; then
   # Explicit Euler without damping grows by sqrt(1 + (dt omega)^2) = 3.7 per step here.
   arguments=(--stage spring --integrator explicit --K 5000 --dt 0.05 --mu 0)
+elif [ "$scenario" = gpu_switch ]; then
+  arguments=(--stage cloth --wind-strength 10)  # the cloth flaps in the wind onto the ground
 fi
 "$program" "${arguments[@]}" >window.log 2>&1 &
 pid=$!
@@ -86,6 +88,16 @@ check_image() {
   echo "window test: $file: $size, $colours colours, deviation $spread"
 }
 
+# The cloth is in the picture: the red squares of its texture cover at least 1 % of the scene
+# right of the panel (the ground and the sky have no saturated red).
+check_cloth_drawn() {
+  local file=$1 red
+  red=$(convert "$file" -crop 840x800+440+0 +repage -fx "r > 0.55 && g < 0.35 && b < 0.35" \
+    -format "%[fx:mean]" info:) || fail "cannot read $file"
+  awk -v f="$red" 'BEGIN { exit !(f > 0.01) }' || fail "$file shows no cloth (red fraction $f)"
+  echo "window test: $file: the cloth's red covers $red of the scene"
+}
+
 case "$scenario" in
   keys)
     press 1
@@ -98,8 +110,8 @@ case "$scenario" in
     press w      # wireframe
     press h      # key help
     press v      # reset view
-    press g      # reserved for the GPU path
-    grep -q "GPU path not available yet" window.log || fail "G printed nothing"
+    press g      # the cloth to the GPU (paused: it must not move)
+    grep -q "cloth: CPU -> GPU at step" window.log || fail "G did not switch the cloth to the GPU"
     timeout 10 xdotool windowsize --sync "$window" 900 600 || fail "cannot resize the window"
     sleep 1
     still_running "resize to 900 x 600"
@@ -122,8 +134,26 @@ case "$scenario" in
     done
     [ "$(grep -c "diverged at step" window.log)" -ge 2 ] || fail "R did not restart the run"
     ;;
+  gpu_switch)
+    # The cloth runs a while on the CPU, goes to the GPU while running, is drawn from the GPU's
+    # textures, and comes back to the CPU, still running.
+    sleep 1
+    press g
+    grep -q "cloth: CPU -> GPU at step" window.log || fail "G did not switch the cloth to the GPU"
+    sleep 1
+    on_gpu=$(screenshot_of cloth)
+    check_image "$on_gpu" 1280 800 200
+    check_cloth_drawn "$on_gpu"
+    press g
+    grep -q "cloth: GPU -> CPU at step" window.log || fail "G did not bring the cloth back"
+    sleep 1
+    grep -q "diverged" window.log && fail "the cloth diverged across the switches"
+    on_cpu=$(screenshot_of cloth)
+    check_image "$on_cpu" 1280 800 200
+    check_cloth_drawn "$on_cpu"
+    ;;
   *)
-    fail "unknown scenario $scenario (keys or divergence)"
+    fail "unknown scenario $scenario (keys, divergence or gpu_switch)"
     ;;
 esac
 
