@@ -51,8 +51,9 @@ void show_readouts(const scene& the_scene) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(warning_red,
                        "diverged at step %ld (t = %.3f s): reduce dt or K, or add damping. "
-                       "R resets. (%s)",
-                       status.step, status.time, status.divergence_reason.c_str());
+                       "R resets. (%s; %s)",
+                       status.step, status.time, status.divergence_reason.c_str(),
+                       status.divergence_advice.c_str());
     ImGui::PopTextWrapPos();
   } else if (!the_scene.control.running) {
     ImGui::TextColored(caution_yellow, "paused (Space runs, N steps once)");
@@ -125,13 +126,19 @@ void show_stability_map(scene& the_scene) {
 // Question 4: what the integrator does with the energy (energy.hpp), frame after frame.
 void show_energy(const scene& the_scene) {
   const energy_breakdown& energy = the_scene.energy();
-  const std::vector<float>& history = the_scene.energy_history();
-  char overlay[64];
-  std::snprintf(overlay, sizeof overlay, "total %.5g J", energy.total);
-  ImGui::PlotLines("##energy", history.data(), static_cast<int>(history.size()), 0, overlay,
-                   FLT_MAX, FLT_MAX, {ImGui::GetContentRegionAvail().x, 60.0f});
-  ImGui::Text("kinetic %.4g J  gravity %.4g J  spring %.4g J", energy.kinetic, energy.gravity,
-              energy.spring);
+  const double now[4] = {energy.kinetic, energy.gravity, energy.spring, energy.total};
+  constexpr const char* names[4] = {"kinetic", "gravity", "spring", "total"};
+  const float heights[4] = {34.0f, 34.0f, 34.0f, 56.0f};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const std::vector<float>& history = the_scene.energy_history()[i];
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "%s %.5g J", names[i], now[i]);
+    ImGui::PushID(static_cast<int>(i));
+    // Each curve on its own scale: the shape (growth, oscillation, decay) is the lesson.
+    ImGui::PlotLines("##energy", history.data(), static_cast<int>(history.size()), 0, overlay,
+                     FLT_MAX, FLT_MAX, {ImGui::GetContentRegionAvail().x, heights[i]});
+    ImGui::PopID();
+  }
 }
 
 void edit_stage(scene& the_scene, user_actions& actions) {
@@ -373,6 +380,9 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
     ImGui::SetWindowFontScale(1.5f);
     ImGui::TextColored(warning_red, "diverged at step %ld (t = %.3f s)", status.step, status.time);
     ImGui::SetWindowFontScale(1.0f);
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
+    ImGui::TextUnformatted(status.divergence_advice.c_str());
+    ImGui::PopTextWrapPos();
     ImGui::TextUnformatted("reduce dt or K, or add damping; R resets the stage");
   }
   ImGui::End();

@@ -305,9 +305,16 @@ void scene::report_divergence(divergence_status check) {
   if (check.diverged) {
     status.diverged = true;
     status.divergence_reason = std::move(check.reason);
-    std::printf("clothlab-window: the %s stage diverged at step %ld (t = %g s): %s\n",
+    // Where dt stood against the stability limit (question 4), with the parameters that diverged.
+    const stability_estimate estimate =
+        with_current_stage([](const auto& stage) { return estimate_stability(stage); });
+    char advice[64];
+    std::snprintf(advice, sizeof advice,
+                  "dt omega_max = %.3g: ", current_time_step() * estimate.omega_max);
+    status.divergence_advice = advice + estimate.explanation;
+    std::printf("clothlab-window: the %s stage diverged at step %ld (t = %g s): %s; %s\n",
                 std::string(stage_name(stage_)).c_str(), status.step, status.time,
-                status.divergence_reason.c_str());
+                status.divergence_reason.c_str(), status.divergence_advice.c_str());
     std::fflush(stdout);
   }
 }
@@ -356,13 +363,18 @@ void scene::record_energy() {
     return;
   constexpr std::size_t frames_kept = 600;
   energy_ = with_current_stage([](const auto& stage) { return compute_energy(stage); });
-  if (energy_history_.size() == frames_kept)
-    energy_history_.erase(energy_history_.begin());
-  energy_history_.push_back(static_cast<float>(energy_.total));
+  const double values[4] = {energy_.kinetic, energy_.gravity, energy_.spring, energy_.total};
+  for (std::size_t i = 0; i < energy_history_.size(); ++i) {
+    std::vector<float>& history = energy_history_[i];
+    if (history.size() == frames_kept)
+      history.erase(history.begin());
+    history.push_back(static_cast<float>(values[i]));
+  }
 }
 
 void scene::restart_energy_history() {
-  energy_history_.clear();
+  for (std::vector<float>& history : energy_history_)
+    history.clear();
   record_energy();
 }
 

@@ -63,6 +63,7 @@ struct run_status {
   double time = 0.0;      // t, s: the sum of the dt of every step (dt can change during a run)
   bool diverged = false;  // divergence_check (stability.hpp) failed: stepping stopped
   std::string divergence_reason;  // what the check found, e.g. a non-finite velocity
+  std::string divergence_advice;  // dt omega_max and the integrator's limit when it diverged
   bool behind_real_time = false;  // real_time mode: the last frame hit one of its limits
 };
 
@@ -91,10 +92,11 @@ class scene {
   stage_kind stage() const { return stage_; }
   const run_status& status() const { return status_[static_cast<int>(stage_)]; }
   double current_time_step() const;  // dt of the current stage, s
-  // Question 4: the energies after the last frame's steps, and the total (J) after each of the
-  // last frames since the stage was selected or reset, oldest first.
+  // Question 4: the energies after the last frame's steps, and each of them (J) after each of
+  // the last frames since the stage was selected or reset, oldest first: kinetic, gravity,
+  // spring, total.
   const energy_breakdown& energy() const { return energy_; }
-  const std::vector<float>& energy_history() const { return energy_history_; }
+  const std::array<std::vector<float>, 4>& energy_history() const { return energy_history_; }
   double steps_per_second() const { return measured_steps_per_second_; }
   double frames_per_second() const { return measured_frames_per_second_; }
 
@@ -166,7 +168,7 @@ class scene {
   double unsimulated_seconds_ = 0.0;  // real_time mode: wall-clock time not yet simulated
 
   energy_breakdown energy_;
-  std::vector<float> energy_history_;
+  std::array<std::vector<float>, 4> energy_history_;  // kinetic, gravity, spring, total
 
   renderer renderer_;
   scene_framebuffer framebuffer_;
