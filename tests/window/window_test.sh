@@ -60,6 +60,16 @@ press() {
   still_running "key $1"
 }
 
+# Waits up to 10 s for a line of the program's output (the window runs at a few frames per
+# second on a loaded machine).
+wait_for_log() {
+  for _ in $(seq 40); do
+    grep -q "$1" window.log && return 0
+    sleep 0.25
+  done
+  return 1
+}
+
 # The screenshot key P writes clothlab-YYYYMMDD-HHMMSS-<stage>.png; waits for it.
 screenshot_of() {
   local stage=$1 before after file
@@ -111,18 +121,14 @@ case "$scenario" in
     press h      # key help
     press v      # reset view
     press g      # the cloth to the GPU (paused: it must not move)
-    grep -q "cloth: CPU -> GPU at step" window.log || fail "G did not switch the cloth to the GPU"
+    wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
     timeout 10 xdotool windowsize --sync "$window" 900 600 || fail "cannot resize the window"
     sleep 1
     still_running "resize to 900 x 600"
     check_image "$(screenshot_of cloth)" 900 600 200
     ;;
   divergence)
-    for _ in $(seq 40); do
-      grep -q "diverged at step" window.log && break
-      sleep 0.25
-    done
-    grep -q "the spring stage diverged at step" window.log ||
+    wait_for_log "the spring stage diverged at step" ||
       fail "explicit Euler with K = 5000, dt = 0.05 did not report a divergence"
     still_running "the divergence"
     # Nothing is drawn for the diverged stage: the panel (with its red message) on the background.
@@ -139,13 +145,13 @@ case "$scenario" in
     # textures, and comes back to the CPU, still running.
     sleep 1
     press g
-    grep -q "cloth: CPU -> GPU at step" window.log || fail "G did not switch the cloth to the GPU"
+    wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
     sleep 1
     on_gpu=$(screenshot_of cloth)
     check_image "$on_gpu" 1280 800 200
     check_cloth_drawn "$on_gpu"
     press g
-    grep -q "cloth: GPU -> CPU at step" window.log || fail "G did not bring the cloth back"
+    wait_for_log "cloth: GPU -> CPU at step" || fail "G did not bring the cloth back"
     sleep 1
     grep -q "diverged" window.log && fail "the cloth diverged across the switches"
     on_cpu=$(screenshot_of cloth)
