@@ -269,9 +269,19 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     require(d.time_step > 0, "--dt", d.time_step, "must be positive");
     require_finite("--mu", d.damping);
     require(d.damping >= 0, "--mu", d.damping, "must be at least 0");
-    require(d.damping * d.time_step <= 1, "--mu", d.damping,
-            "mu dt = " + format_number(d.damping * d.time_step) +
-                " must be at most 1 (the damping factor 1 - mu dt would be negative)");
+    // (1 - mu dt) must not be negative: for the run's stage headless, for every stage in the
+    // window, where each stage keeps its own dt and the same mu.
+    for (stage_kind checked : {stage_kind::spring, stage_kind::coupled, stage_kind::cloth}) {
+      if (o.headless && checked != o.stage)
+        continue;
+      const dynamics_parameters& c = checked == stage_kind::spring    ? o.spring.dynamics
+                                     : checked == stage_kind::coupled ? o.coupled.dynamics
+                                                                      : o.cloth.dynamics;
+      require(c.damping * c.time_step <= 1, "--mu", c.damping,
+              "mu dt = " + format_number(c.damping * c.time_step) + " for the " +
+                  std::string(stage_name(checked)) + " stage (dt = " + format_number(c.time_step) +
+                  ") must be at most 1 (the damping factor 1 - mu dt would be negative)");
+    }
     require_finite("--mass", d.mass);
     require(d.mass > 0, "--mass", d.mass, "must be positive");
     require_finite("--gravity", d.gravity);

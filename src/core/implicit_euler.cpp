@@ -124,7 +124,6 @@ void implicit_euler_solver::step(const dynamics_parameters& dynamics, const forc
   residual_ = rhs_;
   const double rhs_norm = std::sqrt(dot(rhs_, rhs_));
   last_iterations_ = 0;
-  last_residual_ = 0.0;
   if (rhs_norm > 0.0) {
     for (std::size_t i = 0; i < dof; ++i)
       preconditioned_[i] = inverse_diagonal_[i] * residual_[i];
@@ -151,7 +150,6 @@ void implicit_euler_solver::step(const dynamics_parameters& dynamics, const forc
       for (std::size_t i = 0; i < dof; ++i)
         direction_[i] = preconditioned_[i] + beta * direction_[i];
     }
-    last_residual_ = residual_norm / rhs_norm;
   }
 
   // v1 = v0 + dv, p1 = p0 + dt v1 (dv is 0 for fixed particles).

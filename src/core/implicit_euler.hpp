@@ -33,7 +33,6 @@ class implicit_euler_solver {
             particle_system& particles);
 
   int last_iterations() const { return last_iterations_; }  // CG iterations of the last step
-  double last_relative_residual() const { return last_residual_; }  // |b - A dv| / |b|
 
   static constexpr double tolerance = 1e-10;  // relative residual at which CG stops
 
@@ -51,7 +50,6 @@ class implicit_euler_solver {
   std::vector<double> rhs_, solution_, residual_, direction_, product_, preconditioned_,
       inverse_diagonal_;
   int last_iterations_ = 0;
-  double last_residual_ = 0.0;
 };
 
 }  // namespace clothlab

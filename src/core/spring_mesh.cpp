@@ -26,18 +26,6 @@ constexpr spring_offset spring_offsets[] = {
 
 }  // namespace
 
-std::string_view spring_family_name(spring_family family) {
-  switch (family) {
-    case spring_family::structural:
-      return "structural";
-    case spring_family::shear:
-      return "shear";
-    case spring_family::bending:
-      return "bending";
-  }
-  return "?";
-}
-
 spring_mesh::spring_mesh(const cloth_parameters& p) : parameters(p) {
   load_model();
 }
@@ -132,9 +120,7 @@ void spring_mesh::compute_normals() {
 
 void spring_mesh::compute_force() {
   // The springs of the three families, then the wind with the normals of the positions at the
-  // start of the step (which it computes into normals(); without wind, compute them here).
-  if (parameters.wind_strength == 0.0)
-    compute_normals();
+  // start of the step (which it computes into normals(); nothing else in a step needs them).
   const std::array<spring_set, 3> sets = spring_sets();
   evaluate_forces(forces(sets), particles_.position, particles_.force);
 }

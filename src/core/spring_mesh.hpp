@@ -19,7 +19,6 @@ namespace clothlab {
 enum class spring_family { structural, shear, bending };
 inline constexpr std::array<spring_family, 3> all_spring_families = {
     spring_family::structural, spring_family::shear, spring_family::bending};
-std::string_view spring_family_name(spring_family family);  // "structural", "shear", "bending"
 
 class spring_mesh {
  public:
@@ -29,8 +28,8 @@ class spring_mesh {
 
   // Initialisation: the flat N x N grid at rest at z = 0, its springs and its pins.
   void load_model();
-  // Force computation (question 8): vertex normals, then the spring forces of the three
-  // families and the wind force (question 13), all from the current positions.
+  // Force computation (question 8): the spring forces of the three families and the wind force
+  // (question 13) with the normals of the current positions, all from the current positions.
   void compute_force();
   // Numerical integration (question 6), then the ground contact (question 9).
   void apply_force();
@@ -39,8 +38,8 @@ class spring_mesh {
     apply_force();
   }
 
-  // Recomputes normals() from the current positions (compute_force does it at the start of
-  // every step; call it before drawing or exporting the state after a step).
+  // Recomputes normals() from the current positions. A step computes them only when the wind
+  // needs them: call it before using normals() (exporting the state, for instance).
   void compute_normals();
 
   int grid_size() const { return grid_size_; }  // N of the last load_model

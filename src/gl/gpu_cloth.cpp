@@ -346,7 +346,8 @@ void gpu_cloth::read_state(spring_mesh& cloth) const {
   }
   saved_gl_state saved;
   const std::size_t count = static_cast<std::size_t>(grid_size_) * grid_size_;
-  std::vector<float> texels(4 * count);
+  std::vector<float>& texels = readback_;  // kept between calls: no allocation per read
+  texels.resize(4 * count);
   particle_system& particles = cloth.particles();
   const auto read_attachment = [&](GLenum attachment, std::vector<double>& into) {
     glReadBuffer(attachment);
@@ -359,7 +360,6 @@ void gpu_cloth::read_state(spring_mesh& cloth) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_[read_]);
   read_attachment(GL_COLOR_ATTACHMENT0, particles.position);
   read_attachment(GL_COLOR_ATTACHMENT1, particles.velocity);
-  cloth.compute_normals();
 }
 
 }  // namespace clothlab

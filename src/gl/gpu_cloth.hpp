@@ -28,6 +28,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include "gl.hpp"
 #include "shader.hpp"
@@ -69,14 +70,14 @@ class gpu_cloth {
   double time_steps(const cloth_parameters& p, int count);
 
   // Copies the current positions and velocities (floats, widened to doubles) into
-  // cloth.particles() and recomputes cloth's normals from them, for --csv, --obj, --png and the
-  // GPU -> CPU switch. cloth must have this grid size (throws std::invalid_argument otherwise).
+  // cloth.particles(), for --csv, --obj, --png and the GPU -> CPU switch (call
+  // cloth.compute_normals() where its normals are needed). cloth must have this grid size (throws
+  // std::invalid_argument otherwise).
   void read_state(spring_mesh& cloth) const;
 
   int grid_size() const { return grid_size_; }  // N of the last successful load, 0 before
   // The textures of the current state (they change at every step: ask after stepping).
   GLuint position_texture() const { return position_[read_]; }
-  GLuint velocity_texture() const { return velocity_[read_]; }
   GLuint normal_texture() const { return normal_; }
 
  private:
@@ -97,6 +98,7 @@ class gpu_cloth {
   std::array<GLuint, 2> position_{};
   std::array<GLuint, 2> velocity_{};
   std::array<GLuint, 2> framebuffer_{};
+  mutable std::vector<float> readback_;  // read_state's RGBA texels, reused
   // The normals are computed from the positions alone, never from themselves: one copy suffices.
   GLuint normal_ = 0;
   GLuint normal_framebuffer_ = 0;

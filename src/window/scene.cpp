@@ -346,7 +346,6 @@ void scene::draw(int left, int width, int height) {
                                        view, display, width, height);
           break;
         }
-        cloth_stage.compute_normals();  // the normals of the positions being drawn
         renderer_.draw(cloth_stage, view, display, width, height);
         break;
     }

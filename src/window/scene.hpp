@@ -184,8 +184,8 @@ class scene {
   double measured_stepping_rate_ = 0.0;
 
   // The GPU path (questions 11 and 12). While backend_ is gpu, gpu_ holds the cloth's state and
-  // cloth_stage holds a copy read back once per frame, for the divergence check, the energy and
-  // the springs overlay.
+  // cloth_stage holds a copy read back once per frame, for the divergence check and the energy
+  // (the springs overlay is drawn from the position texture).
   cloth_backend backend_ = cloth_backend::cpu;
   gpu_cloth gpu_;
   std::string backend_message_;

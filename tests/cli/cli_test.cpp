@@ -699,3 +699,16 @@ TEST_F(cli, SweepMapsTheSingleSpringAroundItsTheoreticalLimit) {
   EXPECT_EQ(rows[0].find("0.089999999999999997,400,1,semi-implicit,0,"), 0u) << rows[0];
   EXPECT_EQ(rows[1].find("0.11,400,1,semi-implicit,1,"), 0u) << rows[1];
 }
+
+// The window runs every stage with the same mu and each stage's own dt: mu = 300 is fine for the
+// cloth (dt = 0.002, mu dt = 0.6) but would make the spring's damping factor 1 - 300 * 0.01 = -2.
+// Headless, only the run's stage counts.
+TEST_F(cli, DampingTooStrongForAnyStageOfTheWindowIsRefused) {
+  const run_result window = run({"--stage", "cloth", "--mu", "300"}, true);
+  EXPECT_EQ(window.exit_code, 2) << window.err;
+  EXPECT_NE(window.err.find("--mu 300"), std::string::npos) << window.err;
+  EXPECT_NE(window.err.find("spring"), std::string::npos) << window.err;
+  const run_result headless =
+      run({"--headless", "--stage", "cloth", "--N", "4", "--steps", "2", "--mu", "300"});
+  EXPECT_EQ(headless.exit_code, 0) << headless.err;
+}
