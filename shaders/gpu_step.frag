@@ -58,6 +58,12 @@ void main() {
 
   // Forces: the springs to every neighbour inside the grid, then the wind.
   vec3 force = vec3(0.0);
+  // BEGIN SOLUTION Q12: the spring forces on the GPU
+  // STUDENT| // TODO Q12 (GPU springs): for each of the neighbour_count entries of neighbours[],
+  // STUDENT| // the texel j = k + neighbours[i].xy, if it is inside the N x N grid, is joined to this
+  // STUDENT| // particle by a spring of family neighbours[i].z: add spring_force(p, p_j,
+  // STUDENT| // stiffness[family], rest_length[family]), p_j read with texelFetch(position_texture,
+  // STUDENT| // j, 0).xyz. For now the GPU cloth falls under gravity alone.
   for (int i = 0; i < neighbour_count; ++i) {
     ivec2 j = k + neighbours[i].xy;
     if (j.x < 0 || j.y < 0 || j.x >= grid_size || j.y >= grid_size) continue;
@@ -65,8 +71,13 @@ void main() {
     vec3 p_j = texelFetch(position_texture, j, 0).xyz;
     force += spring_force(p, p_j, stiffness[family], rest_length[family]);
   }
+  // END SOLUTION Q12
+  // BEGIN SOLUTION Q13: the wind on the GPU
+  // STUDENT| // TODO Q13 (GPU wind): add F_w = K_w <n, u_w> n, with n read from normal_texture at
+  // STUDENT| // this texel, K_w = wind_strength and u_w = wind_direction (already unit).
   vec3 n = texelFetch(normal_texture, k, 0).xyz;
   force += wind_strength * dot(n, wind_direction) * n;  // question 13: F_w = K_w <n, u_w> n
+  // END SOLUTION Q13
 
   // Integrator: a = F / m + g; the velocity is damped by (1 - mu dt).
   vec3 a = force / mass + vec3(0.0, 0.0, -gravity);

@@ -25,17 +25,51 @@ void coupled_springs::load_model() {
       springs_.push_back({a, b, glm::length(link)});
     }
   }
+  rest_length_ = glm::length(link);                                        // L0 = 0.5 m
   particles_.set_velocity(static_cast<std::size_t>(n), {1.0, -1.0, 0.0});  // the last mass
 }
 
 void coupled_springs::compute_force() {
-  const spring_set sets[] = {{springs_, parameters.stiffness}};
-  evaluate_forces({sets, {}}, particles_.position, particles_.force);
+  compute_force(particles_.position, particles_.force);
+}
+
+void coupled_springs::compute_force(std::span<const double> position,
+                                    std::span<double> force) const {
+  // p(i): the position of particle i (0 is the fixed p0, 1..n the masses down the chain).
+  const auto p = [position](std::size_t i) {
+    return glm::dvec3(position[3 * i], position[3 * i + 1], position[3 * i + 2]);
+  };
+  // add(i, F): adds F to the force on particle i.
+  const auto add = [force](std::size_t i, const glm::dvec3& F) {
+    for (std::size_t c = 0; c < 3; ++c)
+      force[3 * i + c] += F[static_cast<glm::length_t>(c)];
+  };
+  std::fill(force.begin(), force.end(), 0.0);
+  const double K = parameters.stiffness;  // every spring of the chain
+  const double L0 = rest_length_;         // every spring's rest length
+  // BEGIN SOLUTION Q5: the springs of the chain
+  // STUDENT| // TODO Q5 (coupled springs): the chain has n = particles_.size() - 1 masses, and
+  // STUDENT| // spring i (i = 1..n) joins p(i - 1) and p(i). Give
+  // STUDENT| // every spring of the chain its force, on BOTH of its ends (equation 2):
+  // STUDENT| //   F = spring_force(p(i), p(i - 1), K, L0) pulls p(i), and -F pulls p(i - 1).
+  // STUDENT| // For now only the first spring acts, and only on mass 1: the masses below it fall.
+  // STUDENT| add(1, spring_force(p(1), p(0), K, L0));
+  const std::size_t n = particles_.size() - 1;  // moving masses
+  for (std::size_t i = 1; i <= n; ++i) {
+    // Spring i joins p(i - 1) and p(i): F on p(i), and the reaction -F on p(i - 1).
+    const glm::dvec3 F = spring_force(p(i), p(i - 1), K, L0);
+    add(i, F);
+    add(i - 1, -F);
+  }
+  // END SOLUTION Q5
 }
 
 void coupled_springs::apply_force() {
   const spring_set sets[] = {{springs_, parameters.stiffness}};
-  integrator_.step(parameters.dynamics, {sets, {}}, particles_);
+  const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
+    compute_force(position, force);
+  };
+  integrator_.step(parameters.dynamics, {sets, forces_at}, particles_);
 }
 
 }  // namespace clothlab

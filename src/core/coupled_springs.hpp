@@ -19,9 +19,13 @@ class coupled_springs {
 
   explicit coupled_springs(const coupled_springs_parameters& p = {});
 
-  void load_model();     // initialisation of the chain (rebuilds it for mass_count)
-  void compute_force();  // the forces of every spring of the chain
-  void apply_force();    // numerical integration of one step (model.md)
+  void load_model();  // initialisation of the chain (rebuilds it for mass_count)
+  // Force computation (question 5): the forces of every spring of the chain on both of its
+  // ends, from the current positions, into particles().force.
+  void compute_force();
+  // The same forces at any positions (flat, 3k + c), for the integrators with several stages.
+  void compute_force(std::span<const double> position, std::span<double> force) const;
+  void apply_force();  // numerical integration of one step (model.md)
   void step() {
     compute_force();
     apply_force();
@@ -33,8 +37,9 @@ class coupled_springs {
 
  private:
   particle_system particles_;
-  time_integrator integrator_;  // the scheme's scratch arrays, kept between steps
-  std::vector<spring> springs_;
+  time_integrator integrator_;   // the scheme's scratch arrays, kept between steps
+  std::vector<spring> springs_;  // spring i joins particles i-1 and i (energy, drawing)
+  double rest_length_ = 0.5;     // L0, m, of every spring: the initial spacing
 };
 
 }  // namespace clothlab

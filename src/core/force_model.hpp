@@ -19,15 +19,18 @@ struct spring_set {
 // F(p), the forces that do not depend on the velocity. The velocity-dependent damping belongs to
 // the integrator (model.md's (1 - mu dt) factor, or the force -mu m v).
 struct force_model {
-  std::span<const spring_set> spring_sets;  // every family with its stiffness
-  // Adds the forces that are not springs at the given positions: the cloth's wind with the
-  // normals of THOSE positions. Empty when there are none.
-  std::function<void(std::span<const double> position, std::span<double> force)> add_other_forces;
+  std::span<const spring_set> spring_sets;  // every family with its stiffness (implicit scheme)
+  // force <- F(position): the stage's own compute_force at the given positions (the cloth's
+  // wind with the normals of THOSE positions).
+  std::function<void(std::span<const double> position, std::span<double> force)> compute;
 };
 
-// force <- F(position): zero, the springs of every set in order (handout equation 2), then the
-// other forces.
+// force <- F(position), by forces.compute.
 void evaluate_forces(const force_model& forces, std::span<const double> position,
                      std::span<double> force);
+
+// force <- the forces of the given springs alone: zero, then every set in order (equation 2).
+void compute_spring_forces(std::span<const spring_set> sets, std::span<const double> position,
+                           std::span<double> force);
 
 }  // namespace clothlab

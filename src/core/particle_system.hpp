@@ -28,6 +28,9 @@ struct particle_system {
   glm::dvec3 get_velocity(std::size_t k) const {
     return {velocity[3 * k], velocity[3 * k + 1], velocity[3 * k + 2]};
   }
+  glm::dvec3 get_force(std::size_t k) const {
+    return {force[3 * k], force[3 * k + 1], force[3 * k + 2]};
+  }
   void set_position(std::size_t k, const glm::dvec3& p);
   void set_velocity(std::size_t k, const glm::dvec3& v);
 

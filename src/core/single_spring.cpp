@@ -23,12 +23,15 @@ void single_spring::load_model() {
 
 void single_spring::compute_force() {
   const spring_set sets[] = {{springs_, parameters.stiffness}};
-  evaluate_forces({sets, {}}, particles_.position, particles_.force);
+  compute_spring_forces(sets, particles_.position, particles_.force);
 }
 
 void single_spring::apply_force() {
   const spring_set sets[] = {{springs_, parameters.stiffness}};
-  integrator_.step(parameters.dynamics, {sets, {}}, particles_);
+  const auto forces_at = [&sets](std::span<const double> position, std::span<double> force) {
+    compute_spring_forces(sets, position, force);
+  };
+  integrator_.step(parameters.dynamics, {sets, forces_at}, particles_);
 }
 
 }  // namespace clothlab

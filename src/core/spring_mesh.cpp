@@ -8,21 +8,15 @@
 namespace clothlab {
 namespace {
 
-// The springs of the handout's figure 6 as data: each (du, dv) joins (ku, kv) to
-// (ku + du, kv + dv), so that every spring is counted once and acts on both of its ends.
-struct spring_offset {
-  spring_family family;
+// The neighbours s(ku + du, kv + dv) that a spring joins to the vertex s(ku, kv), per family
+// (handout, figure 6).
+struct grid_offset {
   int du;
   int dv;
 };
-constexpr spring_offset spring_offsets[] = {
-    {spring_family::structural, 1, 0},  // (ku, kv)-(ku+1, kv), rest length h
-    {spring_family::structural, 0, 1},  // (ku, kv)-(ku, kv+1), rest length h
-    {spring_family::shear, 1, 1},       // (ku, kv)-(ku+1, kv+1), rest length h sqrt(2)
-    {spring_family::shear, -1, 1},      // (ku, kv)-(ku-1, kv+1), the other diagonal
-    {spring_family::bending, 2, 0},     // (ku, kv)-(ku+2, kv), rest length 2h
-    {spring_family::bending, 0, 2},     // (ku, kv)-(ku, kv+2), rest length 2h
-};
+constexpr grid_offset structural_neighbours[] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+constexpr grid_offset shear_neighbours[] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+constexpr grid_offset bending_neighbours[] = {{2, 0}, {0, 2}, {-2, 0}, {0, -2}};
 
 }  // namespace
 
@@ -57,19 +51,9 @@ std::array<spring_set, 3> spring_mesh::spring_sets() const {
 }
 
 force_model spring_mesh::forces(const std::array<spring_set, 3>& sets) {
-  force_model model{sets, {}};
-  if (parameters.wind_strength != 0.0) {
-    model.add_other_forces = [this](std::span<const double> position, std::span<double> force) {
-      // The normals of the positions the forces are evaluated at: at the current state they are
-      // the cloth's own normals(), at an integrator's intermediate state a scratch array.
-      const bool current_state = position.data() == particles_.position.data();
-      std::vector<double>& normal = current_state ? normals_ : stage_normals_;
-      normal.resize(position.size());
-      compute_vertex_normals(grid_size_, position, normal);
-      accumulate_wind_forces(parameters.wind_strength, parameters.wind_direction, normal, force);
-    };
-  }
-  return model;
+  return {sets, [this](std::span<const double> position, std::span<double> force) {
+            compute_force(position, force);
+          }};
 }
 
 void spring_mesh::load_model() {
@@ -87,29 +71,48 @@ void spring_mesh::load_model() {
     }
   }
 
-  // Rest lengths are the distances in this initial configuration.
+  // Rest lengths are the distances in this initial configuration (h, h sqrt(2) and 2h, up to
+  // rounding): compute_force measures them on a copy of it.
+  rest_position_ = particles_.position;
+  const auto rest_distance = [&](std::size_t a, std::size_t b) {
+    return glm::length(particles_.get_position(a) - particles_.get_position(b));
+  };
+  rest_length_ = {rest_distance(index(0, 0, n), index(1, 0, n)),
+                  rest_distance(index(0, 0, n), index(1, 1, n)),
+                  n > 2 ? rest_distance(index(0, 0, n), index(2, 0, n)) : 2 * h};
+
+  // The list of the springs, each once (drawing, energy, the implicit scheme's Jacobian).
   for (auto& family : springs_)
     family.clear();
-  for (int kv = 0; kv < n; ++kv) {
-    for (int ku = 0; ku < n; ++ku) {
-      for (const spring_offset& o : spring_offsets) {
-        const int ku2 = ku + o.du;
-        const int kv2 = kv + o.dv;
-        if (ku2 < 0 || ku2 >= n || kv2 >= n)
-          continue;
-        const std::size_t a = index(ku, kv, n);
-        const std::size_t b = index(ku2, kv2, n);
-        const double rest = glm::length(particles_.get_position(a) - particles_.get_position(b));
-        springs_[static_cast<int>(o.family)].push_back(
-            {static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), rest});
+  const auto add_springs = [&](spring_family family, std::span<const grid_offset> neighbours) {
+    for (int kv = 0; kv < n; ++kv) {
+      for (int ku = 0; ku < n; ++ku) {
+        for (const grid_offset o : neighbours) {
+          const int ku2 = ku + o.du;
+          const int kv2 = kv + o.dv;
+          const std::size_t a = index(ku, kv, n);
+          if (ku2 < 0 || ku2 >= n || kv2 < 0 || kv2 >= n || index(ku2, kv2, n) < a)
+            continue;  // outside the grid, or already listed from the other end
+          const std::size_t b = index(ku2, kv2, n);
+          springs_[static_cast<int>(family)].push_back(
+              {static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), rest_distance(a, b)});
+        }
       }
     }
-  }
+  };
+  add_springs(spring_family::structural, structural_neighbours);
+  add_springs(spring_family::shear, shear_neighbours);
+  add_springs(spring_family::bending, bending_neighbours);
 
   // Question 7: the two corners (0, 0) and (N-1, 0) never move.
   if (parameters.pins == pin_mode::corners) {
+    // BEGIN SOLUTION Q7: pin two corners
+    // STUDENT| // TODO Q7 (pins): fix the two corners s(0, 0) and s(N-1, 0): set
+    // STUDENT| // particles_.is_fixed[k] = 1 for their index k = index(ku, kv, n). apply_force
+    // STUDENT| // never moves a fixed vertex. For now nothing is pinned: the cloth falls whole.
     particles_.is_fixed[index(0, 0, n)] = 1;
     particles_.is_fixed[index(n - 1, 0, n)] = 1;
+    // END SOLUTION Q7
   }
   compute_normals();
 }
@@ -119,20 +122,154 @@ void spring_mesh::compute_normals() {
 }
 
 void spring_mesh::compute_force() {
-  // The springs of the three families, then the wind with the normals of the positions at the
-  // start of the step (which it computes into normals(); nothing else in a step needs them).
-  const std::array<spring_set, 3> sets = spring_sets();
-  evaluate_forces(forces(sets), particles_.position, particles_.force);
+  compute_force(particles_.position, particles_.force);
+}
+
+void spring_mesh::compute_force(std::span<const double> position, std::span<double> force) {
+  const int N = grid_size_;
+  // The stiffnesses the simulation uses at this N (question 10; the sliders' values by default).
+  // [[maybe_unused]]: the TODO stubs of the student copy do not use them yet.
+  const cloth_parameters used = effective_parameters();
+  [[maybe_unused]] const double K_structural = used.structural_stiffness;  // N/m
+  [[maybe_unused]] const double K_shear = used.shear_stiffness;
+  [[maybe_unused]] const double K_bending = used.bending_stiffness;
+
+  // x(ku, kv): the position of the vertex s(ku, kv), at 3 (ku + N kv) of the flat array.
+  const auto x = [position, N](int ku, int kv) {
+    const std::size_t u = 3 * index(ku, kv, N);
+    return glm::dvec3(position[u], position[u + 1], position[u + 2]);
+  };
+  // L0(ku, kv, du, dv): the rest length of the spring from s(ku, kv) to s(ku + du, kv + dv), their
+  // distance in the initial configuration (h, h sqrt 2 or 2h).
+  [[maybe_unused]] const auto L0 = [this, N](int ku, int kv, int du, int dv) {
+    const std::size_t a = 3 * index(ku, kv, N), b = 3 * index(ku + du, kv + dv, N);
+    const glm::dvec3 d = {rest_position_[a] - rest_position_[b],
+                          rest_position_[a + 1] - rest_position_[b + 1],
+                          rest_position_[a + 2] - rest_position_[b + 2]};
+    return glm::length(d);
+  };
+  // inside(ku, kv): s(ku, kv) is a vertex of the grid (springs stop at the border).
+  [[maybe_unused]] const auto inside = [N](int ku, int kv) {
+    return ku >= 0 && ku < N && kv >= 0 && kv < N;
+  };
+
+  // The wind (question 13) needs the normals of these positions: into normals() at the
+  // current state, into a scratch array at an integrator's intermediate state.
+  const double K_w = used.wind_strength;  // N
+  [[maybe_unused]] const glm::dvec3 u_w =
+      used.wind_direction / glm::length(used.wind_direction);  // unit
+  const bool current_state = position.data() == particles_.position.data();
+  std::vector<double>& normal = current_state ? normals_ : stage_normals_;
+  if (K_w != 0.0) {
+    normal.resize(position.size());
+    compute_vertex_normals(N, position, normal);
+  }
+  // n(ku, kv): the unit normal at s(ku, kv) (only when there is wind).
+  [[maybe_unused]] const auto n = [&normal, N](int ku, int kv) {
+    const std::size_t u = 3 * index(ku, kv, N);
+    return glm::dvec3(normal[u], normal[u + 1], normal[u + 2]);
+  };
+
+  for (int kv = 0; kv < N; ++kv) {
+    for (int ku = 0; ku < N; ++ku) {
+      const glm::dvec3 x_current = x(ku, kv);
+      glm::dvec3 f = {0.0, 0.0, 0.0};  // the force on s(ku, kv), N (gravity: in apply_force)
+
+      // BEGIN SOLUTION Q8: structural springs
+      // STUDENT| // TODO Q8 (structural springs): for each neighbour (du, dv) in
+      // STUDENT| // structural_neighbours, s(ku+1, kv), s(ku, kv+1), s(ku-1, kv), s(ku, kv-1), that
+      // STUDENT| // is inside(ku + du, kv + dv), add the force of equation 2 of the spring joining
+      // STUDENT| // x_current to x(ku + du, kv + dv), of stiffness K_structural and rest length
+      // STUDENT| // L0(ku, kv, du, dv):  f += spring_force(x_current, x_neighbour, K, rest_length).
+      for (const auto [du, dv] : structural_neighbours) {
+        if (inside(ku + du, kv + dv))
+          f += spring_force(x_current, x(ku + du, kv + dv), K_structural, L0(ku, kv, du, dv));
+      }
+      // END SOLUTION Q8
+
+      // BEGIN SOLUTION Q8: shear springs
+      // STUDENT| // TODO Q8 (shear springs): the same with shear_neighbours, the four diagonals
+      // STUDENT| // s(ku+1, kv+1), s(ku-1, kv+1), s(ku-1, kv-1), s(ku+1, kv-1), and K_shear.
+      for (const auto [du, dv] : shear_neighbours) {
+        if (inside(ku + du, kv + dv))
+          f += spring_force(x_current, x(ku + du, kv + dv), K_shear, L0(ku, kv, du, dv));
+      }
+      // END SOLUTION Q8
+
+      // BEGIN SOLUTION Q8: bending springs
+      // STUDENT| // TODO Q8 (bending springs): the same with bending_neighbours, two vertices away,
+      // STUDENT| // s(ku+2, kv), s(ku, kv+2), s(ku-2, kv), s(ku, kv-2), and K_bending.
+      for (const auto [du, dv] : bending_neighbours) {
+        if (inside(ku + du, kv + dv))
+          f += spring_force(x_current, x(ku + du, kv + dv), K_bending, L0(ku, kv, du, dv));
+      }
+      // END SOLUTION Q8
+
+      // BEGIN SOLUTION Q13: wind
+      // STUDENT| // TODO Q13 (wind): when K_w != 0, add F_w = K_w <n, u_w> n, with n(ku, kv)
+      // STUDENT| // the unit normal at the vertex and u_w the unit wind direction (glm::dot).
+      if (K_w != 0.0) {
+        const glm::dvec3 normal_here = n(ku, kv);
+        f += K_w * glm::dot(normal_here, u_w) * normal_here;
+      }
+      // END SOLUTION Q13
+
+      const std::size_t u = 3 * index(ku, kv, N);
+      force[u] = f.x;
+      force[u + 1] = f.y;
+      force[u + 2] = f.z;
+    }
+  }
 }
 
 void spring_mesh::apply_force() {
   // The mass (and stiffnesses) that the grid size implies in the chosen scaling (question 10).
-  const cloth_parameters effective = effective_parameters();
-  const std::array<spring_set, 3> sets = spring_sets();
-  integrator_.step(effective.dynamics, forces(sets), particles_);
-  if (parameters.ground_enabled) {
-    apply_ground_contact(parameters.ground_height, parameters.ground_friction,
-                         parameters.dynamics.time_step, particles_);
+  const cloth_parameters used = effective_parameters();
+  const dynamics_parameters& d = used.dynamics;
+  if (d.integrator == integrator_kind::semi_implicit) {
+    // The handout's explicit Euler (section 4.3): the velocities first, then the positions with
+    // the new velocities.
+    const double dt = d.time_step;                // s
+    const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
+    const std::size_t count = particles_.size();
+    // BEGIN SOLUTION Q6: apply_force, the handout's two loops
+    // STUDENT| // TODO Q6 (apply_force): for every vertex k that is not fixed (is_fixed[k] == 0),
+    // STUDENT| //   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
+    // STUDENT| // with mu = d.damping (1/s) and m = d.mass (kg); then, in a second loop,
+    // STUDENT| //   vertices[k] += dt speed[k].
+    // STUDENT| // Use particles_.get_force(k), get_velocity(k), set_velocity(k, v), get_position(k)
+    // STUDENT| // and set_position(k, p). For now every vertex falls freely: no springs, no damping.
+    // STUDENT| for (std::size_t k = 0; k < count; ++k) {
+    // STUDENT|   if (particles_.is_fixed[k])
+    // STUDENT|     continue;
+    // STUDENT|   const glm::dvec3 v = particles_.get_velocity(k) + dt * g;
+    // STUDENT|   particles_.set_velocity(k, v);
+    // STUDENT|   particles_.set_position(k, particles_.get_position(k) + dt * v);
+    // STUDENT| }
+    const double mu = d.damping;  // 1/s
+    const double m = d.mass;      // kg
+    // for every vertex k: speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
+    for (std::size_t k = 0; k < count; ++k) {
+      if (particles_.is_fixed[k])
+        continue;  // a fixed vertex never moves (question 7)
+      const glm::dvec3 acceleration = particles_.get_force(k) / m + g;
+      particles_.set_velocity(k, (1.0 - dt * mu) * particles_.get_velocity(k) + dt * acceleration);
+    }
+    // for every vertex k: vertices[k] += dt speed[k]
+    for (std::size_t k = 0; k < count; ++k) {
+      if (particles_.is_fixed[k])
+        continue;
+      const glm::dvec3 new_position = particles_.get_position(k) + dt * particles_.get_velocity(k);
+      particles_.set_position(k, new_position);
+    }
+    // END SOLUTION Q6
+  } else {
+    // The stability lab's other schemes (src/core/integrator.cpp), not a question of the lab.
+    integrator_.step(d, forces(spring_sets()), particles_);
+  }
+  if (parameters.ground_enabled) {  // question 9
+    apply_ground_contact(parameters.ground_height, parameters.ground_friction, d.time_step,
+                         particles_);
   }
 }
 
@@ -156,33 +293,30 @@ void compute_vertex_normals(int n, std::span<const double> position, std::span<d
   }
 }
 
-void accumulate_wind_forces(double strength, const glm::dvec3& direction,
-                            std::span<const double> normal, std::span<double> force) {
-  const glm::dvec3 u = direction / glm::length(direction);  // u_w, unit
-  const std::size_t count = normal.size() / 3;
-  for (std::size_t k = 0; k < count; ++k) {
-    const glm::dvec3 nk = {normal[3 * k], normal[3 * k + 1], normal[3 * k + 2]};
-    const glm::dvec3 f = strength * glm::dot(nk, u) * nk;  // F_w = K_w <n, u_w> n
-    force[3 * k] += f.x;
-    force[3 * k + 1] += f.y;
-    force[3 * k + 2] += f.z;
-  }
-}
-
 void apply_ground_contact(double ground_height, double ground_friction, double time_step,
                           particle_system& particles) {
-  const double friction_factor = 1.0 - ground_friction * time_step;  // (1 - mu_g dt)
+  // [[maybe_unused]]: the TODO stub of the student copy does not use them yet.
+  [[maybe_unused]] const double z_g = ground_height;     // m
+  [[maybe_unused]] const double mu_g = ground_friction;  // 1/s
+  [[maybe_unused]] const double dt = time_step;          // s
   for (std::size_t k = 0; k < particles.size(); ++k) {
     if (particles.is_fixed[k])
       continue;
-    double* p = &particles.position[3 * k];
-    double* v = &particles.velocity[3 * k];
-    if (p[2] < ground_height) {
-      p[2] = ground_height;
-      v[2] = std::max(v[2], 0.0);
-      v[0] *= friction_factor;
-      v[1] *= friction_factor;
+    glm::dvec3 p = particles.get_position(k);
+    glm::dvec3 v = particles.get_velocity(k);
+    // BEGIN SOLUTION Q9: the ground z = z_g
+    // STUDENT| // TODO Q9 (ground): if the vertex is below the plane (p.z < z_g), put it back on it
+    // STUDENT| // (p.z = z_g), stop its fall (v.z = max(v.z, 0)) and damp its sliding by fluid
+    // STUDENT| // friction: (v.x, v.y) *= (1 - mu_g dt). For now the cloth falls through the floor.
+    if (p.z < z_g) {
+      p.z = z_g;
+      v.z = std::max(v.z, 0.0);
+      v.x *= 1.0 - mu_g * dt;
+      v.y *= 1.0 - mu_g * dt;
     }
+    // END SOLUTION Q9
+    particles.set_position(k, p);
+    particles.set_velocity(k, v);
   }
 }
 

@@ -28,10 +28,16 @@ class spring_mesh {
 
   // Initialisation: the flat N x N grid at rest at z = 0, its springs and its pins.
   void load_model();
-  // Force computation (question 8): the spring forces of the three families and the wind force
-  // (question 13) with the normals of the current positions, all from the current positions.
+  // Force computation (question 8): for every vertex s(ku, kv), the forces of its structural,
+  // shear and bending springs and the wind (question 13), from the current positions, into
+  // particles().force. Gravity is not a force here: apply_force adds g to the acceleration.
   void compute_force();
-  // Numerical integration (question 6), then the ground contact (question 9).
+  // The same forces at any positions (flat, 3k + c), for the integrators with several stages;
+  // the wind uses the normals of those positions.
+  void compute_force(std::span<const double> position, std::span<double> force);
+  // Numerical integration (question 6): the handout's explicit Euler loops for the default
+  // semi-implicit integrator (the stability lab's schemes otherwise), then the ground contact
+  // (question 9).
   void apply_force();
   void step() {
     compute_force();
@@ -53,6 +59,8 @@ class spring_mesh {
   std::span<const spring> springs(spring_family family) const {
     return springs_[static_cast<int>(family)];
   }
+  // L0 of a family, m: h, h sqrt(2) or 2h, as measured on the first cell (the GPU's uniforms).
+  double rest_length(spring_family family) const { return rest_length_[static_cast<int>(family)]; }
   // The parameters the simulation uses: effective_cloth_parameters(parameters) for the N of the
   // last load_model, i.e. parameters themselves in the per_particle scaling (question 10).
   cloth_parameters effective_parameters() const;
@@ -68,8 +76,10 @@ class spring_mesh {
   particle_system particles_;
   std::vector<double> normals_;                 // n, unit, 3k + c
   std::array<std::vector<spring>, 3> springs_;  // indexed by spring_family
-  std::vector<double> stage_normals_;           // normals of a scheme's intermediate state (wind)
-  time_integrator integrator_;                  // the scheme's scratch arrays, kept between steps
+  std::array<double, 3> rest_length_{};         // L0 of each family, indexed by spring_family
+  std::vector<double> rest_position_;  // the initial configuration, 3k + c: the rest lengths
+  std::vector<double> stage_normals_;  // normals of a scheme's intermediate state (wind)
+  time_integrator integrator_;         // the scheme's scratch arrays, kept between steps
 
   // The force model of the current parameters (the wind from the normals of the positions
   // it is evaluated at); sets must outlive it.
@@ -79,10 +89,6 @@ class spring_mesh {
 // Vertex normals of an N x N grid by central differences (model.md):
 // n = normalize(d_u x d_v), d_u = p(min(ku+1,N-1),kv) - p(max(ku-1,0),kv), d_v likewise in kv.
 void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal);
-
-// Adds the wind force F_w = K_w <n, u_w> n to every particle (u_w normalised here).
-void accumulate_wind_forces(double strength, const glm::dvec3& direction,
-                            std::span<const double> normal, std::span<double> force);
 
 // The ground plane z = z_g, after the integrator: every particle that is not fixed and is below
 // it is put back on it, loses its downward velocity and has its tangential velocity damped by

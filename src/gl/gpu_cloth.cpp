@@ -213,14 +213,9 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
 
   // Rest lengths, one per family, from the CPU's springs: all springs of a family share it
   // (h, h√2, 2h with h = S / (N - 1)). N = 2 has no bending spring: none of its texels uses 2h.
-  const auto first_rest_length = [&](spring_family family, double if_none) {
-    const auto springs = cloth.springs(family);
-    return springs.empty() ? if_none : springs.front().rest_length;
-  };
-  const double h = first_rest_length(spring_family::structural, 0.0);
-  rest_length_ = {static_cast<float>(h),
-                  static_cast<float>(first_rest_length(spring_family::shear, h * std::sqrt(2.0))),
-                  static_cast<float>(first_rest_length(spring_family::bending, 2.0 * h))};
+  rest_length_ = {static_cast<float>(cloth.rest_length(spring_family::structural)),
+                  static_cast<float>(cloth.rest_length(spring_family::shear)),
+                  static_cast<float>(cloth.rest_length(spring_family::bending))};
 
   // The CPU state as texels: texel (ku, kv) = particle k = ku + N kv, 4 floats each.
   const particle_system& particles = cloth.particles();

@@ -1,0 +1,123 @@
+// Question 6: spring_mesh::apply_force, the handout's explicit Euler (section 4.3): for every
+// vertex k that is not fixed,
+//   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g),   then   vertices[k] += dt speed[k].
+// The forces are set by hand here (compute_force is question 8), and the ground is off.
+#include <gtest/gtest.h>
+
+#include "lab_check.hpp"
+#include "spring_mesh.hpp"
+
+namespace clothlab {
+namespace {
+
+// A 2 x 2 cloth without pins or ground: dt = 0.1 s, mu = 0.5 /s, m = 2 kg, g0 = 10 m/s^2.
+spring_mesh small_cloth() {
+  cloth_parameters p;
+  p.grid_size = 2;
+  p.pins = pin_mode::none;
+  p.ground_enabled = false;
+  p.dynamics = {.time_step = 0.1, .damping = 0.5, .mass = 2.0, .gravity = 10.0};
+  spring_mesh cloth(p);
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
+    cloth.particles().is_fixed[k] = 0;  // whatever question 7 does
+  return cloth;
+}
+
+void set_force(spring_mesh& cloth, std::size_t k, const glm::dvec3& f) {
+  for (int c = 0; c < 3; ++c)
+    cloth.particles().force[3 * k + c] = f[c];
+}
+
+// Vertex 3 moves at v = (1, 2, 3) under F = (4, -2, 6):
+//   v' = (1 - 0.1 * 0.5) (1, 2, 3) + 0.1 ((2, -1, 3) + (0, 0, -10))
+//      = (0.95, 1.9, 2.85) + (0.2, -0.1, -0.7) = (1.15, 1.8, 2.15).
+TEST(Q6ApplyForce, VelocityIsDampedThenAcceleratedByForceOverMassPlusGravity) {
+  spring_mesh cloth = small_cloth();
+  cloth.particles().set_velocity(3, {1, 2, 3});
+  set_force(cloth, 3, {4, -2, 6});
+  cloth.apply_force();
+  LAB_EXPECT_VEC(cloth.particles().get_velocity(3), glm::dvec3(1.15, 1.8, 2.15), 1e-12,
+                 "Q6: speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g) with dt = 0.1, "
+                 "mu = 0.5, m = 2, g = (0, 0, -10), speed (1, 2, 3) and force (4, -2, 6). "
+                 "Are the forces and the damping used?");
+}
+
+// Then vertices[k] += dt speed[k] with the NEW speed: p' = (0.5, 0.5, 0) + 0.1 (1.15, 1.8, 2.15).
+TEST(Q6ApplyForce, PositionMovesWithTheNewVelocity) {
+  spring_mesh cloth = small_cloth();
+  const glm::dvec3 p = cloth.particles().get_position(3);
+  cloth.particles().set_velocity(3, {1, 2, 3});
+  set_force(cloth, 3, {4, -2, 6});
+  cloth.apply_force();
+  LAB_EXPECT_VEC(cloth.particles().get_position(3), p + 0.1 * glm::dvec3(1.15, 1.8, 2.15), 1e-12,
+                 "Q6: vertices[k] += dt speed[k], with the speed just computed (the handout's "
+                 "second loop)");
+}
+
+// Every vertex, not only the first: each gets its own force, F_k = (k, -k, 2k), from rest:
+//   v_k = 0.1 ((k, -k, 2k) / 2 + (0, 0, -10)),  p_k += 0.1 v_k.
+TEST(Q6ApplyForce, EveryVertexMovesUnderItsOwnForce) {
+  spring_mesh cloth = small_cloth();
+  std::vector<glm::dvec3> start;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double s = double(k);
+    set_force(cloth, k, {s, -s, 2 * s});
+    start.push_back(cloth.particles().get_position(k));
+  }
+  cloth.apply_force();
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double s = double(k);
+    const glm::dvec3 v = 0.1 * (glm::dvec3(s, -s, 2 * s) / 2.0 + glm::dvec3(0, 0, -10));
+    LAB_EXPECT_VEC(cloth.particles().get_velocity(k), v, 1e-12,
+                   "Q6: vertex " + std::to_string(k) +
+                       " should be accelerated by its own "
+                       "force forces[k] / m plus gravity");
+    LAB_EXPECT_VEC(cloth.particles().get_position(k), start[k] + 0.1 * v, 1e-12,
+                   "Q6: vertex " + std::to_string(k) + " should move by dt speed[k]");
+  }
+}
+
+// A fixed vertex is never updated: it keeps its position and its zero velocity, whatever force.
+TEST(Q6ApplyForce, FixedVerticesAreNeverUpdated) {
+  spring_mesh cloth = small_cloth();
+  cloth.particles().is_fixed[1] = 1;
+  const glm::dvec3 p = cloth.particles().get_position(1);
+  set_force(cloth, 1, {100, 100, 100});
+  cloth.apply_force();
+  LAB_EXPECT_VEC(cloth.particles().get_position(1), p, 0.0,
+                 "Q6: a fixed vertex (is_fixed[k] == 1) must never move");
+  LAB_EXPECT_VEC(cloth.particles().get_velocity(1), glm::dvec3(0.0), 0.0,
+                 "Q6: a fixed vertex keeps a zero speed");
+}
+
+// Without pins, springs at rest length and no ground, every vertex gets the same velocity and the
+// cloth falls as one particle: v_s = (1 - mu dt) v_(s-1) - g0 dt, z_s = z_(s-1) + dt v_s.
+TEST(Q6ApplyForce, AFreeClothFallsWithTheDampedFreeFallOfOneParticle) {
+  cloth_parameters p;
+  p.grid_size = 5;
+  p.pins = pin_mode::none;
+  p.ground_enabled = false;
+  p.dynamics.damping = 0.5;
+  p.dynamics.time_step = 0.002;
+  spring_mesh cloth(p);
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
+    cloth.particles().is_fixed[k] = 0;
+  double v = 0.0, z = 0.0;
+  for (int s = 0; s < 100; ++s) {
+    for (std::size_t k = 0; k < cloth.particles().size(); ++k)
+      set_force(cloth, k, {0, 0, 0});  // springs at rest: no force (question 8 not needed)
+    cloth.apply_force();
+    v = (1 - 0.5 * 0.002) * v - 9.8 * 0.002;
+    z = z + 0.002 * v;
+  }
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+    EXPECT_NEAR(cloth.particles().velocity[3 * k + 2], v, 1e-12)
+        << "Q6: after 100 steps of a free fall with damping mu = 0.5 every vertex should fall "
+           "at (1 - dt mu) v - g0 dt per step; vertex "
+        << k;
+    EXPECT_NEAR(cloth.particles().position[3 * k + 2], z, 1e-12) << "Q6: vertex " << k;
+  }
+}
+
+}  // namespace
+}  // namespace clothlab

@@ -1,0 +1,161 @@
+// Question 8: spring_mesh::compute_force, the forces of the structural, shear and bending springs
+// of every vertex s(ku, kv) (handout figure 6), each with its own stiffness. Every test turns on
+// one family at a time, moves vertices by hand, and compares with equation 2 evaluated for the
+// pairs listed in its comment (spring_force, spring.hpp, is the handout's formula).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lab_check.hpp"
+#include "spring_mesh.hpp"
+
+namespace clothlab {
+namespace {
+
+// A flat N x N cloth of side S without wind, with the given stiffnesses (0 turns a family off).
+spring_mesh cloth_with(int n, double side, double k_structural, double k_shear, double k_bending) {
+  cloth_parameters p;
+  p.grid_size = n;
+  p.side_length = side;
+  p.structural_stiffness = k_structural;
+  p.shear_stiffness = k_shear;
+  p.bending_stiffness = k_bending;
+  p.wind_strength = 0.0;
+  return spring_mesh(p);
+}
+
+glm::dvec3 force_on(const spring_mesh& cloth, int ku, int kv) {
+  return cloth.particles().get_force(spring_mesh::index(ku, kv, cloth.grid_size()));
+}
+glm::dvec3 position_of(const spring_mesh& cloth, int ku, int kv) {
+  return cloth.particles().get_position(spring_mesh::index(ku, kv, cloth.grid_size()));
+}
+void move(spring_mesh& cloth, int ku, int kv, const glm::dvec3& p) {
+  cloth.particles().set_position(spring_mesh::index(ku, kv, cloth.grid_size()), p);
+}
+
+// 3 x 3, S = 2 (h = 1): s(ku, kv) = (-1 + ku, -1 + kv, 0). Structural only, K = 100. Pull s(2, 1)
+// from (1, 0, 0) to (1.5, 0, 0):
+//  - spring to s(1, 1) = (0, 0, 0): L = 1.5, F = 100 (1 - 1.5) (1.5, 0, 0) / 1.5 = (-50, 0, 0);
+//  - springs to s(2, 0) and s(2, 2): d = (0.5, +-1, 0), L = sqrt 1.25, their y parts cancel:
+//    F_x = 2 * 100 (1 - sqrt 1.25) / sqrt 1.25 * 0.5.
+// And s(1, 1) feels the reaction of the first one, (50, 0, 0), its other springs being at rest.
+TEST(Q8ComputeForce, StructuralSpringsPullAStretchedVertexBack) {
+  spring_mesh cloth = cloth_with(3, 2.0, 100.0, 0.0, 0.0);
+  move(cloth, 2, 1, {1.5, 0, 0});
+  cloth.compute_force();
+  const double side = 100.0 * (1 - std::sqrt(1.25)) / std::sqrt(1.25);
+  LAB_EXPECT_VEC(force_on(cloth, 2, 1), glm::dvec3(-50 + side, 0, 0), 1e-9,
+                 "Q8, structural springs: s(2, 1), pulled 0.5 m away from s(1, 1), should be "
+                 "pulled back by its structural springs to s(1, 1), s(2, 0) and s(2, 2). "
+                 "Without them the cloth does not hold together");
+  LAB_EXPECT_VEC(force_on(cloth, 1, 1), glm::dvec3(50, 0, 0), 1e-9,
+                 "Q8, structural springs: s(1, 1) should feel the stretched spring to its "
+                 "neighbour s(ku+1, kv) = s(2, 1): a spring pulls both of its ends");
+}
+
+// Shear only, K = 100, 3 x 3, S = 2: move the centre s(1, 1) to c = (0.3, 0.2, 0.4). It is joined
+// to the four corners by diagonals of rest length sqrt 2; the corner s(0, 0) only to the centre.
+TEST(Q8ComputeForce, ShearSpringsHoldTheDiagonals) {
+  spring_mesh cloth = cloth_with(3, 2.0, 0.0, 100.0, 0.0);
+  const glm::dvec3 c = {0.3, 0.2, 0.4};
+  move(cloth, 1, 1, c);
+  cloth.compute_force();
+  const double L0 = std::sqrt(2.0);
+  glm::dvec3 expected(0.0);
+  for (const glm::dvec3 corner :
+       {glm::dvec3(-1, -1, 0), glm::dvec3(1, -1, 0), glm::dvec3(1, 1, 0), glm::dvec3(-1, 1, 0)})
+    expected += spring_force(c, corner, 100.0, L0);
+  LAB_EXPECT_VEC(force_on(cloth, 1, 1), expected, 1e-9,
+                 "Q8, shear springs: the centre s(1, 1), moved off its place, should be held by "
+                 "its four diagonal springs to s(ku+-1, kv+-1) (rest length h sqrt 2). Without "
+                 "them the cloth collapses along its diagonals");
+  LAB_EXPECT_VEC(force_on(cloth, 0, 0), spring_force(glm::dvec3(-1, -1, 0), c, 100.0, L0), 1e-9,
+                 "Q8, shear springs: the corner s(0, 0) should feel its one diagonal spring, to "
+                 "s(1, 1)");
+}
+
+// Bending only, K_bend = 7, 3 x 3, S = 2: lift s(2, 0) = (1, -1, 0) to (1, -1, 1). Its bending
+// springs go two vertices away, to s(0, 0) = (-1, -1, 0) and s(2, 2) = (1, 1, 0): d = (2, 0, 1)
+// and (0, -2, 1), both of length sqrt 5 and rest length 2:
+//   F = 7 (2 - sqrt 5) / sqrt 5 (2, -2, 2).
+TEST(Q8ComputeForce, BendingSpringsSkipOneVertex) {
+  spring_mesh cloth = cloth_with(3, 2.0, 0.0, 0.0, 7.0);
+  move(cloth, 2, 0, {1, -1, 1});
+  cloth.compute_force();
+  const double scale = 7.0 * (2 - std::sqrt(5.0)) / std::sqrt(5.0);
+  LAB_EXPECT_VEC(force_on(cloth, 2, 0), scale * glm::dvec3(2, -2, 2), 1e-9,
+                 "Q8, bending springs: s(2, 0), lifted out of the plane, should be pulled back by "
+                 "its bending springs to s(ku-2, kv) and s(ku, kv+2) (rest length 2h). Without "
+                 "them the cloth folds with no resistance, like paper");
+  LAB_EXPECT_VEC(force_on(cloth, 0, 0), spring_force({-1, -1, 0}, {1, -1, 1}, 7.0, 2.0), 1e-9,
+                 "Q8, bending springs: s(0, 0) should feel the bending spring to s(ku+2, kv)");
+}
+
+// A 2 x 2 cloth, S = 1 (h = 1), all three families with different stiffnesses: lift s(1, 1) by
+// 0.5. Its structural springs to s(0, 1) and s(1, 0) (rest 1) and its shear spring to s(0, 0)
+// (rest sqrt 2) must each use their own family's stiffness.
+TEST(Q8ComputeForce, EachFamilyUsesItsOwnStiffness) {
+  spring_mesh cloth = cloth_with(2, 1.0, 300.0, 70.0, 11.0);
+  const glm::dvec3 p = position_of(cloth, 1, 1) + glm::dvec3(0, 0, 0.5);
+  move(cloth, 1, 1, p);
+  cloth.compute_force();
+  const glm::dvec3 expected = spring_force(p, position_of(cloth, 0, 1), 300.0, 1.0) +
+                              spring_force(p, position_of(cloth, 1, 0), 300.0, 1.0) +
+                              spring_force(p, position_of(cloth, 0, 0), 70.0, std::sqrt(2.0));
+  LAB_EXPECT_VEC(force_on(cloth, 1, 1), expected, 1e-9,
+                 "Q8: with K_struct = 300 and K_shear = 70, s(1, 1) lifted by 0.5 m should feel "
+                 "two structural springs with K_struct and one shear spring with K_shear");
+}
+
+// A corner has only the neighbours inside the grid: on a 4 x 4 cloth (S = 3, h = 1) with every
+// vertex moved, s(0, 0) feels structural s(1, 0), s(0, 1); shear s(1, 1); bending s(2, 0), s(0, 2).
+TEST(Q8ComputeForce, ACornerFeelsOnlyTheSpringsInsideTheGrid) {
+  spring_mesh cloth = cloth_with(4, 3.0, 40.0, 30.0, 20.0);
+  for (int kv = 0; kv < 4; ++kv)
+    for (int ku = 0; ku < 4; ++ku)
+      move(cloth, ku, kv,
+           position_of(cloth, ku, kv) +
+               0.1 * glm::dvec3(std::sin(ku + 2.0 * kv), std::cos(3.0 * ku - kv), ku * kv % 3));
+  cloth.compute_force();
+  const glm::dvec3 p = position_of(cloth, 0, 0);
+  const glm::dvec3 expected = spring_force(p, position_of(cloth, 1, 0), 40.0, 1.0) +
+                              spring_force(p, position_of(cloth, 0, 1), 40.0, 1.0) +
+                              spring_force(p, position_of(cloth, 1, 1), 30.0, std::sqrt(2.0)) +
+                              spring_force(p, position_of(cloth, 2, 0), 20.0, 2.0) +
+                              spring_force(p, position_of(cloth, 0, 2), 20.0, 2.0);
+  LAB_EXPECT_VEC(force_on(cloth, 0, 0), expected, 1e-9,
+                 "Q8: the corner s(0, 0) has five springs: structural to s(1, 0) and s(0, 1), "
+                 "shear to s(1, 1), bending to s(2, 0) and s(0, 2); neighbours outside the grid "
+                 "(ku < 0, kv < 0) have none");
+}
+
+// Spring forces come in opposite pairs along the line of their two vertices: on any shape their
+// sum and their total torque are zero. A deformed 5 x 5 cloth, every family on.
+TEST(Q8ComputeForce, SpringForcesSumToZeroAndExertNoTorque) {
+  spring_mesh cloth = cloth_with(5, 1.0, 500.0, 200.0, 50.0);
+  for (int kv = 0; kv < 5; ++kv)
+    for (int ku = 0; ku < 5; ++ku)
+      move(cloth, ku, kv,
+           position_of(cloth, ku, kv) +
+               0.05 * glm::dvec3(std::cos(ku * kv), std::sin(ku + 3.0 * kv), ku - kv));
+  cloth.compute_force();
+  glm::dvec3 sum(0.0), torque(0.0), largest(0.0);
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+    const glm::dvec3 f = cloth.particles().get_force(k);
+    sum += f;
+    torque += glm::cross(cloth.particles().get_position(k), f);
+    largest = glm::max(largest, glm::abs(f));
+  }
+  EXPECT_GT(largest.x + largest.y + largest.z, 1.0)
+      << "Q8: a deformed cloth with stiff springs should feel spring forces";
+  LAB_EXPECT_VEC(sum, glm::dvec3(0.0), 1e-9,
+                 "Q8: the spring forces should sum to zero (each spring pulls its two ends with "
+                 "opposite forces): is some spring counted on one end only, or twice?");
+  LAB_EXPECT_VEC(torque, glm::dvec3(0.0), 1e-9,
+                 "Q8: the spring forces should exert no total torque (each pair lies along its "
+                 "spring)");
+}
+
+}  // namespace
+}  // namespace clothlab

@@ -1,0 +1,66 @@
+// Question 9: apply_ground_contact, the plane z = z_g. After the integrator, a vertex below it is
+// put back on it, stops falling, and slides with its tangential velocity damped by fluid
+// friction, (v_x, v_y) *= (1 - mu_g dt).
+#include <gtest/gtest.h>
+
+#include "lab_check.hpp"
+#include "spring_mesh.hpp"
+
+namespace clothlab {
+namespace {
+
+// z_g = -1, mu_g = 2, dt = 0.01: factor 1 - mu_g dt = 0.98.
+//  0: below and falling:       z -> -1, v = (2, -4, -3) -> (1.96, -3.92, 0)
+//  1: above the ground:        untouched
+//  2: below and rising:        z -> -1, v_z = 1 kept, (v_x, v_y) damped
+//  3: fixed, below the ground: untouched
+TEST(Q9Ground, ContactRuleMatchesTheHandComputation) {
+  particle_system particles;
+  particles.resize(4);
+  particles.set_position(0, {0.1, 0.2, -1.5});
+  particles.set_velocity(0, {2, -4, -3});
+  particles.set_position(1, {0, 0, -0.5});
+  particles.set_velocity(1, {1, 1, -1});
+  particles.set_position(2, {0, 0, -1.01});
+  particles.set_velocity(2, {1, 0.5, 1});
+  particles.set_position(3, {0, 0, -2});
+  particles.is_fixed[3] = 1;
+  apply_ground_contact(-1.0, 2.0, 0.01, particles);
+  LAB_EXPECT_VEC(particles.get_position(0), glm::dvec3(0.1, 0.2, -1.0), 1e-15,
+                 "Q9: a vertex below the plane z = -1 should be put back on it (z = -1), its x "
+                 "and y unchanged");
+  LAB_EXPECT_VEC(particles.get_velocity(0), glm::dvec3(1.96, -3.92, 0.0), 1e-15,
+                 "Q9: a vertex that hits the ground stops falling (v_z = 0) and slides with "
+                 "(v_x, v_y) damped by (1 - mu_g dt) = 0.98");
+  LAB_EXPECT_VEC(particles.get_position(1), glm::dvec3(0, 0, -0.5), 0.0,
+                 "Q9: a vertex above the ground is not touched");
+  LAB_EXPECT_VEC(particles.get_velocity(1), glm::dvec3(1, 1, -1), 0.0,
+                 "Q9: a vertex above the ground keeps its velocity");
+  LAB_EXPECT_VEC(particles.get_velocity(2), glm::dvec3(0.98, 0.49, 1.0), 1e-15,
+                 "Q9: a vertex below the ground that already moves up keeps v_z (v_z = max(v_z, "
+                 "0)); its sliding is still damped");
+  LAB_EXPECT_VEC(particles.get_position(3), glm::dvec3(0, 0, -2), 0.0,
+                 "Q9: a fixed vertex is never moved, not even by the ground");
+}
+
+// A cloth falls onto a ground 0.3 m below it: it reaches it (a free fall of 0.3 m takes 0.25 s,
+// 125 steps) and no vertex ever ends a step under it.
+TEST(Q9Ground, AFallingClothNeverEndsAStepUnderTheGround) {
+  cloth_parameters p;
+  p.grid_size = 8;
+  p.ground_height = -0.3;
+  spring_mesh cloth(p);
+  bool touched = false;
+  for (int s = 0; s < 400; ++s) {
+    cloth.step();
+    for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+      const double z = cloth.particles().position[3 * k + 2];
+      ASSERT_GE(z, -0.3) << "Q9: vertex " << k << " is under the ground z = -0.3 at step " << s + 1;
+      touched = touched || z == -0.3;
+    }
+  }
+  EXPECT_TRUE(touched) << "Q9: the cloth should have reached the ground";
+}
+
+}  // namespace
+}  // namespace clothlab
