@@ -1,5 +1,5 @@
 #version 330 core
-// GPU cloth, pass 1 (questions 12 and 13): one step of shared/model.md for particle (ku, kv) =
+// GPU cloth, pass 1 (questions 12 and 13): one step of docs/model.md for particle (ku, kv) =
 // this texel, in single precision. Forces from the positions and normals at the start of the
 // step, then the integrator, then the ground contact. Writes the new position and velocity.
 

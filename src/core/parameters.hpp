@@ -1,4 +1,4 @@
-// The parameters of clothlab's three stages, one struct per stage (shared/model.md).
+// The parameters of clothlab's three stages, one struct per stage (docs/model.md).
 // Every field carries its unit and its default. The window edits these structs and nothing
 // else; the command line fills them once.
 #pragma once

@@ -172,7 +172,7 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
 
   for (int kv = 0; kv < N; ++kv) {
     for (int ku = 0; ku < N; ++ku) {
-      const glm::dvec3 x_current = x(ku, kv);
+      [[maybe_unused]] const glm::dvec3 x_current = x(ku, kv);
       glm::dvec3 f = {0.0, 0.0, 0.0};  // the force on s(ku, kv), N (gravity: in apply_force)
 
       // BEGIN SOLUTION Q8: structural springs
@@ -208,10 +208,8 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
       // BEGIN SOLUTION Q13: wind
       // STUDENT| // TODO Q13 (wind): when K_w != 0, add F_w = K_w <n, u_w> n, with n(ku, kv)
       // STUDENT| // the unit normal at the vertex and u_w the unit wind direction (glm::dot).
-      if (K_w != 0.0) {
-        const glm::dvec3 normal_here = n(ku, kv);
-        f += K_w * glm::dot(normal_here, u_w) * normal_here;
-      }
+      const glm::dvec3 normal_here = K_w != 0.0 ? n(ku, kv) : glm::dvec3(0.0);  // no wind: none
+      f += K_w * glm::dot(normal_here, u_w) * normal_here;
       // END SOLUTION Q13
 
       const std::size_t u = 3 * index(ku, kv, N);

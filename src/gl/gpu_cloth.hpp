@@ -1,6 +1,7 @@
 // Handout section 5, questions 11 to 13: the cloth of spring_mesh simulated on the GPU with
-// fragment shaders, in single precision, by exactly the model of shared/model.md.
+// fragment shaders, in single precision, by exactly the model of docs/model.md.
 //
+// BEGIN TEACHER: question 11 asks the student to find this structure by reading the code
 // Question 11, the structure. The state lives in N x N GL_RGBA32F textures, one texel per
 // particle: texel (ku, kv) holds particle k = ku + N kv (the CPU's index).
 //   position texture  xyz: p (m)      w: 1 if the particle is pinned (never moves), else 0
@@ -20,6 +21,7 @@
 //   2. gpu_normal.frag: the normals of the new positions (central differences), so that the
 //      renderer and the next step's wind see the normals of the current positions.
 // Both use gpu_full_screen.vert.
+// END TEACHER
 //
 // Every call needs the GL context current in which load() was called; destroy the gpu_cloth
 // before that context. step() and read_state() leave the GL state they change (framebuffer

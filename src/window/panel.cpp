@@ -281,6 +281,7 @@ void show_gpu_path(const scene& the_scene, user_actions& actions) {
     if (comparison.grid_size != the_scene.cloth_stage.grid_size())
       ImGui::TextDisabled("measured for another N: measure again");
   }
+  // BEGIN TEACHER: the answer to question 11, which the student copy leaves to the student
   ImGui::TextDisabled(
       "Q11: every particle is one texel of N x N float (RGBA32F) textures: positions (w: "
       "pinned) and velocities, two copies each that swap after every step (ping-pong), and the "
@@ -290,6 +291,7 @@ void show_gpu_path(const scene& the_scene, user_actions& actions) {
       "normals. The CPU sends a flat N x N grid once; the vertex shader fetches each vertex's "
       "position and normal from the textures. The state comes back to the CPU once per frame, "
       "for the divergence check and the energy.");
+  // END TEACHER
   ImGui::PopTextWrapPos();
 }
 

@@ -1,5 +1,5 @@
 // The control panel (Dear ImGui): the readouts, the stage, the simulation control, every
-// parameter of shared/model.md for the current stage and the display toggles, in sections named
+// parameter of docs/model.md for the current stage and the display toggles, in sections named
 // after the handout question each one answers. Also the key-help window (H).
 #pragma once
 

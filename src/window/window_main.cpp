@@ -1,5 +1,5 @@
 // clothlab-window: the interactive demo of the lab. The same options as `clothlab`
-// (shared/cli.md); it starts on --stage. The main loop below reads top to bottom in five phases:
+// (docs/cli.md); it starts on --stage. The main loop below reads top to bottom in five phases:
 // poll, UI, simulate, draw, swap.
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>

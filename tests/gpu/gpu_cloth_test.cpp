@@ -1,4 +1,4 @@
-// The GPU cloth (handout section 5) against the CPU cloth: both implement shared/model.md, the
+// The GPU cloth (handout section 5) against the CPU cloth: both implement docs/model.md, the
 // GPU in single precision, the CPU in double precision, so the same run on both paths must stay
 // within a small distance. Runs in an off-screen OSMesa context (llvmpipe).
 #include <gtest/gtest.h>
@@ -135,7 +135,11 @@ std::vector<agreement_case> agreement_cases() {
   return cases;
 }
 
-TEST_F(GpuCloth, SameRunsStayWithinTheToleranceOfTheCpu) {
+// The comparisons with the CPU need the lab's solution on both paths (questions 6 to 9, 12, 13):
+// in the student copy they fail until every question is answered (label gpu-solution).
+using SolutionGpuCloth = GpuCloth;
+
+TEST_F(SolutionGpuCloth, SameRunsStayWithinTheToleranceOfTheCpu) {
   for (const agreement_case& c : agreement_cases()) {
     const std::string integrator(integrator_name(c.parameters.dynamics.integrator));
     const run_difference difference = compare_runs(c.parameters, c.parameters, c.steps);
@@ -159,7 +163,7 @@ TEST_F(GpuCloth, TheComparisonFailsWhenTheGpuRunsAnotherCloth) {
             position_tolerance);
 }
 
-TEST_F(GpuCloth, SwitchingFromCpuToGpuMidRunCarriesTheState) {
+TEST_F(SolutionGpuCloth, SwitchingFromCpuToGpuMidRunCarriesTheState) {
   cloth_parameters p = agreement_cases()[1].parameters;  // wind
   spring_mesh cpu(p);
   for (int s = 0; s < 100; ++s)
@@ -179,7 +183,7 @@ TEST_F(GpuCloth, SwitchingFromCpuToGpuMidRunCarriesTheState) {
   EXPECT_LE(max_position_difference(cpu, gpu_result), position_tolerance);
 }
 
-TEST_F(GpuCloth, PinnedParticlesStayExactlyInPlaceWithZeroVelocity) {
+TEST_F(SolutionGpuCloth, PinnedParticlesStayExactlyInPlaceWithZeroVelocity) {
   cloth_parameters p = agreement_cases()[1].parameters;  // wind, the corners pinned
   spring_mesh cloth(p);
   gpu_cloth gpu;
@@ -250,7 +254,7 @@ TEST_F(GpuCloth, FirstStepOfAFreeFlatClothIsGravityTimesDtExactly) {
   }
 }
 
-TEST_F(GpuCloth, NormalTextureHoldsTheNormalsOfTheCurrentPositions) {
+TEST_F(SolutionGpuCloth, NormalTextureHoldsTheNormalsOfTheCurrentPositions) {
   cloth_parameters p = agreement_cases()[1].parameters;  // wind: a curved cloth
   spring_mesh cpu(p);
   gpu_cloth gpu;

@@ -1,4 +1,4 @@
-"""An independent implementation of shared/model.md: pure Python, doubles, written from the
+"""An independent implementation of docs/model.md: pure Python, doubles, written from the
 contract's text alone and sharing no code with clothlab (test_against_reference.py compares the
 two, step by step, particle by particle)."""
 import math

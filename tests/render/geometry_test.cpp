@@ -170,12 +170,12 @@ TEST(DefaultCamera, FramesTheSingleSpring) {
   expect_framed(stage, stage_kind::spring, 500, 0.05f);
 }
 
-TEST(DefaultCamera, FramesTheDefaultChain) {
+TEST(SolutionDefaultCamera, FramesTheDefaultChain) {
   coupled_springs stage;
   expect_framed(stage, stage_kind::coupled, 500, 0.05f);
 }
 
-TEST(DefaultCamera, FramesTheFallingCloth) {
+TEST(SolutionDefaultCamera, FramesTheFallingCloth) {
   spring_mesh cloth;
   expect_framed(cloth, stage_kind::cloth, 1500, 0.02f);
 }

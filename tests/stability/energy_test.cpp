@@ -124,7 +124,7 @@ TEST(Energy, FreeFallDriftsAsComputedByHand) {
 // The pinned, damped cloth under every stable scheme: after a second its energy has gone down
 // from the start (it fell, and the damping worked) and its springs are stretched. (Explicit
 // Euler would need dt < mu / omega_max^2 = 3e-5 s here.)
-TEST(Energy, TheClothLosesEnergyWithDampingUnderEveryStableScheme) {
+TEST(SolutionEnergy, TheClothLosesEnergyWithDampingUnderEveryStableScheme) {
   for (integrator_kind kind : {integrator_kind::semi_implicit, integrator_kind::velocity_verlet,
                                integrator_kind::runge_kutta_4, integrator_kind::implicit_euler}) {
     cloth_parameters p;

@@ -77,7 +77,7 @@ double curtain_lowest_point(int n, resolution_scaling scaling) {
   return lowest;
 }
 
-TEST(Resolution, StretchingSagIsTheSameAtEveryResolution) {
+TEST(SolutionResolution, StretchingSagIsTheSameAtEveryResolution) {
   const double reference = curtain_lowest_point(20, resolution_scaling::resolution_independent);
   EXPECT_LT(reference, -1.1);  // it hangs (S = 1) and stretches
   for (int n : {10, 40}) {

@@ -154,7 +154,7 @@ TEST(PredictedLimit, VerletAndRungeKuttaLimitsHoldOnTheOscillator) {
 }
 
 // Backward Euler at 20 times the semi-implicit limit: the spring and the cloth stay put.
-TEST(PredictedLimit, ImplicitStaysStableAtTwentyTimesTheExplicitLimit) {
+TEST(SolutionPredictedLimit, ImplicitStaysStableAtTwentyTimesTheExplicitLimit) {
   single_spring spring = undamped_spring(500.0, 0.01);
   spring.parameters.dynamics.integrator = integrator_kind::implicit_euler;
   spring.parameters.dynamics.time_step = 20 * 2 / std::sqrt(500.0);

@@ -104,7 +104,7 @@ check_cloth_drawn() {
   local file=$1 red
   red=$(convert "$file" -crop 840x800+440+0 +repage -fx "r > 0.55 && g < 0.35 && b < 0.35" \
     -format "%[fx:mean]" info:) || fail "cannot read $file"
-  awk -v f="$red" 'BEGIN { exit !(f > 0.01) }' || fail "$file shows no cloth (red fraction $f)"
+  awk -v f="$red" 'BEGIN { exit !(f > 0.01) }' || fail "$file shows no cloth (red fraction $red)"
   echo "window test: $file: the cloth's red covers $red of the scene"
 }
 

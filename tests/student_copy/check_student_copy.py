@@ -1,0 +1,169 @@
+#!/usr/bin/env python3
+"""The student copy, kept honest (issue 8). Usage: check_student_copy.py PROJECT_ROOT
+
+1. scripts/make-student-version writes the copy into a temporary folder: no solution region, no
+   marker, no teacher file survives, and README.md lists the tasks.
+2. Its ./test.sh builds it (warnings are reported as failures) and runs every test: each
+   question's tests (labels q5 ... q13) fail there, every test without a question label passes
+   (those labelled render-solution, gpu-solution, ... need the whole solution and are only
+   reported), and the run ends
+   with the table of the questions.
+3. Its program runs: a headless cloth falls freely (gravity alone, no NaN), and ./run.sh without
+   a display renders its tour.
+4. Restoring one question at a time (make-student-version --keep Qn into the same folder, an
+   incremental rebuild) makes that question's tests pass.
+Exit 0 when all of this holds; otherwise every failed check is listed.
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import xml.etree.ElementTree as ElementTree
+from pathlib import Path
+
+QUESTIONS = ["q5", "q6", "q7", "q8", "q9", "q12", "q13"]
+TEACHER_FILES = ["docs/answers.md", "docs/teaching.md", "scripts/make-student-version",
+                 "tests/student_copy"]
+problems = []
+
+
+def check(condition, message):
+    if not condition:
+        problems.append(message)
+        print("FAILED: " + message, flush=True)
+    return condition
+
+
+def run(command, cwd, env=None, timeout=1800):
+    print("$ " + " ".join(str(c) for c in command), flush=True)
+    return subprocess.run([str(c) for c in command], cwd=cwd, env=env, timeout=timeout,
+                          capture_output=True, text=True)
+
+
+def test_labels(build):
+    listing = subprocess.run(["ctest", "--test-dir", str(build), "--show-only=json-v1"],
+                             check=True, capture_output=True, text=True).stdout
+    labels = {}
+    for test in json.loads(listing)["tests"]:
+        values = [p["value"] for p in test.get("properties", []) if p["name"] == "LABELS"]
+        labels[test["name"]] = set(values[0]) if values else set()
+    return labels
+
+
+def junit_outcomes(path):
+    outcome = {}
+    for case in ElementTree.parse(path).getroot().iter("testcase"):
+        failed = case.find("failure") is not None or case.find("error") is not None
+        outcome[case.get("name")] = "failed" if failed else case.get("status", "run")
+    return outcome
+
+
+def main():
+    root = Path(sys.argv[1]).resolve()
+    work = Path(tempfile.mkdtemp(prefix="clothlab-student-check-"))
+    dest = work / "clothlab-student"
+    try:
+        # 1. Generate.
+        made = run([root / "scripts/make-student-version", dest], cwd=work)
+        print(made.stdout + made.stderr)
+        if not check(made.returncode == 0, "make-student-version failed"):
+            return 1
+        for name in TEACHER_FILES:
+            check(not (dest / name).exists(), f"the teacher's {name} is in the student copy")
+        for path in dest.rglob("*"):
+            if path.is_file() and "build" not in path.relative_to(dest).parts:
+                text = path.read_bytes().decode("utf-8", "replace")
+                for marker in ("BEGIN SOLUTION", "END SOLUTION", "STUDENT|", "BEGIN TEACHER"):
+                    check(marker not in text, f"'{marker}' survives in {path.relative_to(dest)}")
+        readme = (dest / "README.md").read_text()
+        check("## Your tasks" in readme, "README.md of the copy has no 'Your tasks' section")
+        for q in QUESTIONS:
+            check(f"./test.sh -L {q}" in readme, f"README.md's tasks do not name {q}")
+
+        # 2. The student's ./test.sh: builds, runs everything, prints the table.
+        tested = run([dest / "test.sh"], cwd=dest, timeout=2400)
+        output = tested.stdout + tested.stderr
+        (work / "student-test.log").write_text(output)
+        check(tested.returncode != 0, "the student copy's ./test.sh passes although every "
+                                      "question is a stub")
+        check("warning:" not in output,
+              "the student copy builds with warnings:\n" +
+              "\n".join(l for l in output.splitlines() if "warning:" in l)[:2000])
+        check("The lab, question by question" in output,
+              "the student copy's ./test.sh does not end with the table of the questions")
+        build = dest / "build"
+        results = build / "test-results.xml"
+        if not check(results.exists(), "the student copy's ./test.sh wrote no test results "
+                                       "(did it build?):\n" + output[-3000:]):
+            return 1
+        labels = test_labels(build)
+        outcome = junit_outcomes(results)
+        check(len(outcome) == len(labels), f"{len(labels)} tests, {len(outcome)} results")
+        for q in QUESTIONS:
+            tests = [t for t, l in labels.items() if q in l]
+            failing = [t for t in tests if outcome.get(t) == "failed"]
+            check(tests, f"no test is labelled {q}")
+            check(failing, f"every test of {q} passes on the stubs: {q} is not graded")
+        for test, names in sorted(labels.items()):
+            if names & set(QUESTIONS) or any(n.endswith("-solution") for n in names):
+                continue
+            check(outcome.get(test) != "failed",
+                  f"'{test}' (labels {sorted(names) or 'none'}) fails in the student copy: a "
+                  "test that needs a question's solution must carry its label")
+        solution_tests = [t for t, l in labels.items() if any(n.endswith("-solution") for n in l)]
+        print(f"tests that need the whole solution: {len(solution_tests)}, failing in the copy: "
+              f"{sum(outcome.get(t) == 'failed' for t in solution_tests)}")
+
+        # 3. The program runs on the stubs: a free fall, finite, and the tour renders.
+        csv = work / "fall.csv"
+        ran = run([build / "clothlab", "--headless", "--steps", "100", "--N", "5", "--csv", csv,
+                   "--csv-every", "100"], cwd=work)
+        if check(ran.returncode == 0, f"a headless run of the copy failed: {ran.stderr}"):
+            rows = [line.split(",") for line in csv.read_text().splitlines()[1:]]
+            last = [r for r in rows if r[0] == "100"]
+            dt, g0 = 0.002, 9.8
+            z_expected = -g0 * dt * dt * 100 * 101 / 2  # v_s = -g0 dt s, z_s = z_(s-1) + dt v_s
+            check(len(last) == 25 and all(abs(float(r[5]) - z_expected) < 1e-9 for r in last),
+                  f"the stub cloth should fall freely to z = {z_expected:.6g} after 100 steps")
+        env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+        toured = run([dest / "run.sh"], cwd=dest, env=env)
+        check(toured.returncode == 0 and len(list((dest / "out").glob("*.png"))) >= 5,
+              f"./run.sh of the copy did not render its tour: {toured.stdout[-800:]}"
+              f"{toured.stderr[-800:]}")
+
+        # 4. Restore one question at a time: its tests pass.
+        for q in QUESTIONS:
+            kept = run([root / "scripts/make-student-version", dest, "--keep", q.upper()],
+                       cwd=work)
+            if not check(kept.returncode == 0, f"--keep {q}: {kept.stderr}"):
+                continue
+            built = run(["cmake", "--build", build, "-j", "2", "--target", f"lab_{q}_tests"],
+                        cwd=dest)
+            if not check(built.returncode == 0, f"restoring {q}: the build failed:\n"
+                                                f"{built.stdout[-2000:]}{built.stderr[-2000:]}"):
+                continue
+            graded = run(["ctest", "--test-dir", build, "-L", f"^{q}$", "--output-on-failure"],
+                         cwd=dest)
+            check(graded.returncode == 0 and "No tests were found" not in graded.stdout,
+                  f"with the solution of {q} restored, its tests still fail:\n"
+                  f"{graded.stdout[-3000:]}")
+            print(f"restored {q}: its tests pass" if graded.returncode == 0 else "", flush=True)
+    finally:
+        if not problems:
+            shutil.rmtree(work, ignore_errors=True)
+        else:
+            print(f"(the copy is left in {work} to look at)")
+    if problems:
+        print(f"\n{len(problems)} problem(s) with the student copy:")
+        for p in problems:
+            print("  - " + p.splitlines()[0])
+        return 1
+    print("the student copy builds, fails exactly its question tests, and passes each once "
+          "restored")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
