@@ -72,11 +72,23 @@ void spring_mesh::load_model() {
   }
 
   // Rest lengths are the distances in this initial configuration (h, h sqrt(2) and 2h, up to
-  // rounding): compute_force measures them on a copy of it.
-  rest_position_ = particles_.position;
+  // rounding), kept for every vertex and every offset (du, dv) in [-2, 2]^2 that stays inside.
   const auto rest_distance = [&](std::size_t a, std::size_t b) {
     return glm::length(particles_.get_position(a) - particles_.get_position(b));
   };
+  rest_lengths_.assign(rest_length_slot(particles_.size(), -2, -2), 0.0);
+  for (int kv = 0; kv < n; ++kv) {
+    for (int ku = 0; ku < n; ++ku) {
+      for (int dv = -2; dv <= 2; ++dv) {
+        for (int du = -2; du <= 2; ++du) {
+          if (ku + du >= 0 && ku + du < n && kv + dv >= 0 && kv + dv < n) {
+            rest_lengths_[rest_length_slot(index(ku, kv, n), du, dv)] =
+                rest_distance(index(ku, kv, n), index(ku + du, kv + dv, n));
+          }
+        }
+      }
+    }
+  }
   rest_length_ = {rest_distance(index(0, 0, n), index(1, 0, n)),
                   rest_distance(index(0, 0, n), index(1, 1, n)),
                   n > 2 ? rest_distance(index(0, 0, n), index(2, 0, n)) : 2 * h};
@@ -142,11 +154,7 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
   // L0(ku, kv, du, dv): the rest length of the spring from s(ku, kv) to s(ku + du, kv + dv), their
   // distance in the initial configuration (h, h sqrt 2 or 2h).
   [[maybe_unused]] const auto L0 = [this, N](int ku, int kv, int du, int dv) {
-    const std::size_t a = 3 * index(ku, kv, N), b = 3 * index(ku + du, kv + dv, N);
-    const glm::dvec3 d = {rest_position_[a] - rest_position_[b],
-                          rest_position_[a + 1] - rest_position_[b + 1],
-                          rest_position_[a + 2] - rest_position_[b + 2]};
-    return glm::length(d);
+    return rest_lengths_[rest_length_slot(index(ku, kv, N), du, dv)];
   };
   // inside(ku, kv): s(ku, kv) is a vertex of the grid (springs stop at the border).
   [[maybe_unused]] const auto inside = [N](int ku, int kv) {

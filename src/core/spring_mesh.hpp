@@ -77,7 +77,12 @@ class spring_mesh {
   std::vector<double> normals_;                 // n, unit, 3k + c
   std::array<std::vector<spring>, 3> springs_;  // indexed by spring_family
   std::array<double, 3> rest_length_{};         // L0 of each family, indexed by spring_family
-  std::vector<double> rest_position_;  // the initial configuration, 3k + c: the rest lengths
+  // The rest length from vertex k to the vertex at (du, dv) from it, du, dv in [-2, 2], at
+  // rest_length_slot(k, du, dv): the distances of the initial configuration (compute_force).
+  std::vector<double> rest_lengths_;
+  static std::size_t rest_length_slot(std::size_t k, int du, int dv) {
+    return 25 * k + static_cast<std::size_t>(5 * (dv + 2) + (du + 2));
+  }
   std::vector<double> stage_normals_;  // normals of a scheme's intermediate state (wind)
   time_integrator integrator_;         // the scheme's scratch arrays, kept between steps
 

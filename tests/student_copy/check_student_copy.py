@@ -16,6 +16,7 @@ Exit 0 when all of this holds; otherwise every failed check is listed.
 """
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -72,11 +73,13 @@ def main():
             return 1
         for name in TEACHER_FILES:
             check(not (dest / name).exists(), f"the teacher's {name} is in the student copy")
+        marker = re.compile(r"^\s*(//|#|<!--)\s*((BEGIN|END) (SOLUTION|TEACHER)|STUDENT\|)",
+                            re.MULTILINE)
         for path in dest.rglob("*"):
             if path.is_file() and "build" not in path.relative_to(dest).parts:
-                text = path.read_bytes().decode("utf-8", "replace")
-                for marker in ("BEGIN SOLUTION", "END SOLUTION", "STUDENT|", "BEGIN TEACHER"):
-                    check(marker not in text, f"'{marker}' survives in {path.relative_to(dest)}")
+                found = marker.search(path.read_bytes().decode("utf-8", "replace"))
+                check(not found, f"a marker survives in {path.relative_to(dest)}: "
+                                 f"'{found.group(0).strip() if found else ''}'")
         readme = (dest / "README.md").read_text()
         check("## Your tasks" in readme, "README.md of the copy has no 'Your tasks' section")
         for q in QUESTIONS:

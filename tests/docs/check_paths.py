@@ -1,0 +1,45 @@
+#!/usr/bin/env python3
+"""The documents point at what exists. Usage: check_paths.py PROJECT_ROOT
+
+For README.md and docs/*.md: every relative path they name (a Markdown link, or a path written
+as code, like `src/core/spring_mesh.cpp`) exists in the project, and none points at the lab's
+shared/ folder, which is not part of the project. Paths of things a run creates (build/, out/,
+files named by the user) are not checked."""
+import re
+import sys
+from pathlib import Path
+
+root = Path(sys.argv[1]).resolve()
+documents = [root / "README.md"] + sorted((root / "docs").glob("*.md"))
+GENERATED = ("build/", "build-", "out/", "Testing/", "share/", "/", "~", "$", "../")
+problems = []
+checked = 0
+for document in documents:
+    if not document.exists():
+        problems.append(f"{document.relative_to(root)} is missing")
+        continue
+    text = document.read_text()
+    name = document.relative_to(root)
+    if re.search(r"(^|[\s`(\[])(\.\./)?shared/", text):
+        problems.append(f"{name} points at shared/, which is not part of the project")
+    for match in re.finditer(r"\]\(([^)#\s]+)(#[^)]*)?\)", text):  # [text](path)
+        target = match.group(1)
+        if re.match(r"[a-z]+:", target):
+            continue  # a URL
+        checked += 1
+        if not (document.parent / target).exists():
+            problems.append(f"{name}: link to {target}, which does not exist")
+    for match in re.finditer(r"`([\w./-]+)`", text):  # `path/to/file`
+        path = match.group(1)
+        if "/" not in path or path.startswith(GENERATED) or path.endswith("/..."):
+            continue
+        if not re.search(r"\.(md|sh|py|cpp|hpp|frag|vert|txt|png|supp|json)$|/$", path) and \
+                not (root / path).is_dir():
+            continue  # not a file name (an option value, a fraction...)
+        checked += 1
+        if not (root / path).exists():
+            problems.append(f"{name}: `{path}` does not exist")
+for p in problems:
+    print("FAILED: " + p)
+print(f"{checked} paths checked in {len(documents)} documents, {len(problems)} problem(s)")
+sys.exit(1 if problems else 0)
