@@ -20,6 +20,16 @@ uniform bool explicit_euler;  // false: semi-implicit (the handout's code order)
 uniform float wind_strength;   // K_w, N
 uniform vec3 wind_direction;   // u_w, unit
 
+// Additions (docs/model.md, "Interaction and contacts").
+uniform bool drag_enabled;       // the mouse drag: F_d = K_d (q - p) on one particle
+uniform ivec2 drag_texel;        // (ku, kv) of the dragged particle
+uniform vec3 drag_target;        // q, m
+uniform float drag_stiffness;    // K_d, N/m
+uniform bool sphere_enabled;     // a sphere the cloth collides with
+uniform vec3 sphere_centre;      // c, m
+uniform float sphere_radius;     // r, m
+uniform float sphere_friction;   // mu_s, 1/s
+
 uniform bool ground_enabled;
 uniform float ground_height;    // z_g, m
 uniform float ground_friction;  // mu_g, 1/s
@@ -78,12 +88,27 @@ void main() {
   vec3 n = texelFetch(normal_texture, k, 0).xyz;
   force += wind_strength * dot(n, wind_direction) * n;  // question 13: F_w = K_w <n, u_w> n
   // END SOLUTION Q13
+  if (drag_enabled && k == drag_texel) force += drag_stiffness * (drag_target - p);  // F_d
 
   // Integrator: a = F / m + g; the velocity is damped by (1 - mu dt).
   vec3 a = force / mass + vec3(0.0, 0.0, -gravity);
   vec3 v_new = (1.0 - damping * time_step) * v + time_step * a;
   // semi-implicit: the position moves with the new velocity; explicit (eq. 6): with the old one.
   vec3 p_new = p + time_step * (explicit_euler ? v : v_new);
+
+  // The sphere: a particle inside is put back on its surface along n = (p - c)/|p - c|, loses its
+  // inward normal velocity, and its tangential velocity is damped by (1 - mu_s dt).
+  if (sphere_enabled) {
+    vec3 from_centre = p_new - sphere_centre;
+    float distance = length(from_centre);
+    if (distance < sphere_radius) {
+      vec3 n_s = distance > 0.0 ? from_centre / distance : vec3(0.0, 0.0, 1.0);
+      v_new -= min(dot(v_new, n_s), 0.0) * n_s;
+      vec3 normal_part = dot(v_new, n_s) * n_s;
+      v_new = normal_part + (1.0 - sphere_friction * time_step) * (v_new - normal_part);
+      p_new = sphere_centre + sphere_radius * n_s;
+    }
+  }
 
   // Question 9: the ground z = z_g puts the particle back on it, stops its fall and damps its
   // tangential velocity by (1 - mu_g dt).

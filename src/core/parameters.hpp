@@ -71,6 +71,26 @@ enum class resolution_scaling {
 std::string_view resolution_scaling_name(resolution_scaling scaling);
 std::optional<resolution_scaling> parse_resolution_scaling(std::string_view name);
 
+// Additions to the lab (docs/model.md, "Interaction and contacts"), each off by default.
+
+// The mouse drag: particle (ku, kv) is pulled towards the target q by a spring of stiffness K_d
+// and rest length 0, F_d = K_d (q - p). A pinned particle cannot be dragged.
+struct drag_parameters {
+  bool enabled = false;
+  int ku = 0;  // the dragged particle (ku, kv)
+  int kv = 0;
+  glm::dvec3 target = {0, 0, 0};  // q, m
+  double stiffness = 1000.0;      // K_d, N/m
+};
+
+// A sphere the cloth collides with (after the integrator, before the ground).
+struct sphere_parameters {
+  bool enabled = false;
+  glm::dvec3 centre = {0.0, 0.0, -0.6};  // c, m
+  double radius = 0.3;                   // r, m
+  double friction = 5.0;  // mu_s, 1/s: tangential velocity *= (1 - mu_s dt) in contact
+};
+
 // Stage 3: the N x N cloth (handout section 4).
 struct cloth_parameters {
   dynamics_parameters dynamics{.time_step = 0.002, .damping = 0.5};
@@ -91,6 +111,10 @@ struct cloth_parameters {
   // the current N from them (same total mass, same stretching and bending response).
   resolution_scaling scaling = resolution_scaling::per_particle;
   int reference_grid_size = 20;  // N_ref: the grid whose particles have mass m and springs K
+  drag_parameters drag;          // the mouse drag (addition)
+  sphere_parameters sphere;      // a sphere to drape the cloth over (addition)
+  double tear_strain = 0.0;      // epsilon: a spring longer than (1 + epsilon) L0 tears; 0: never
+  double self_collision_thickness = 0.0;  // d, m: non-neighbours are kept d apart; 0: off
 };
 
 // The parameters that the simulation of an N x N cloth really uses: the identity in

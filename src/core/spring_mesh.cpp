@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contacts.hpp"
 #include "integrator.hpp"
 
 namespace clothlab {
@@ -115,6 +116,12 @@ void spring_mesh::load_model() {
   add_springs(spring_family::structural, structural_neighbours);
   add_springs(spring_family::shear, shear_neighbours);
   add_springs(spring_family::bending, bending_neighbours);
+  // Every spring is intact until it tears (tear_springs).
+  spring_intact_.assign(rest_lengths_.size(), 0);
+  for (const auto& family : springs_) {
+    for (const spring& s : family)
+      set_spring_intact(s, 1);
+  }
 
   // Question 7: the two corners (0, 0) and (N-1, 0) never move.
   if (parameters.pins == pin_mode::corners) {
@@ -156,9 +163,12 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
   [[maybe_unused]] const auto L0 = [this, N](int ku, int kv, int du, int dv) {
     return rest_lengths_[rest_length_slot(index(ku, kv, N), du, dv)];
   };
-  // inside(ku, kv): s(ku, kv) is a vertex of the grid (springs stop at the border).
-  [[maybe_unused]] const auto inside = [N](int ku, int kv) {
-    return ku >= 0 && ku < N && kv >= 0 && kv < N;
+  // joined(ku, kv, du, dv): a spring joins s(ku, kv) to s(ku + du, kv + dv): the neighbour is
+  // inside the grid (springs stop at its border) and the spring is not torn (tearing is an
+  // addition of clothlab, off by default).
+  [[maybe_unused]] const auto joined = [this, N](int ku, int kv, int du, int dv) {
+    return ku + du >= 0 && ku + du < N && kv + dv >= 0 && kv + dv < N &&
+           spring_intact_[rest_length_slot(index(ku, kv, N), du, dv)] != 0;
   };
 
   // The wind (question 13) needs the normals of these positions: into normals() at the
@@ -186,11 +196,11 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
       // BEGIN SOLUTION Q8: structural springs
       // STUDENT| // TODO Q8 (structural springs): for each neighbour (du, dv) in
       // STUDENT| // structural_neighbours, s(ku+1, kv), s(ku, kv+1), s(ku-1, kv), s(ku, kv-1), that
-      // STUDENT| // is inside(ku + du, kv + dv), add the force of equation 2 of the spring joining
-      // STUDENT| // x_current to x(ku + du, kv + dv), of stiffness K_structural and rest length
+      // STUDENT| // is joined(ku, kv, du, dv) to s(ku, kv), add the force of equation 2 of the spring
+      // STUDENT| // from x_current to x(ku + du, kv + dv), of stiffness K_structural and rest length
       // STUDENT| // L0(ku, kv, du, dv):  f += spring_force(x_current, x_neighbour, K, rest_length).
       for (const auto [du, dv] : structural_neighbours) {
-        if (inside(ku + du, kv + dv))
+        if (joined(ku, kv, du, dv))
           f += spring_force(x_current, x(ku + du, kv + dv), K_structural, L0(ku, kv, du, dv));
       }
       // END SOLUTION Q8
@@ -199,7 +209,7 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
       // STUDENT| // TODO Q8 (shear springs): the same with shear_neighbours, the four diagonals
       // STUDENT| // s(ku+1, kv+1), s(ku-1, kv+1), s(ku-1, kv-1), s(ku+1, kv-1), and K_shear.
       for (const auto [du, dv] : shear_neighbours) {
-        if (inside(ku + du, kv + dv))
+        if (joined(ku, kv, du, dv))
           f += spring_force(x_current, x(ku + du, kv + dv), K_shear, L0(ku, kv, du, dv));
       }
       // END SOLUTION Q8
@@ -208,7 +218,7 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
       // STUDENT| // TODO Q8 (bending springs): the same with bending_neighbours, two vertices away,
       // STUDENT| // s(ku+2, kv), s(ku, kv+2), s(ku-2, kv), s(ku, kv-2), and K_bending.
       for (const auto [du, dv] : bending_neighbours) {
-        if (inside(ku + du, kv + dv))
+        if (joined(ku, kv, du, dv))
           f += spring_force(x_current, x(ku + du, kv + dv), K_bending, L0(ku, kv, du, dv));
       }
       // END SOLUTION Q8
@@ -224,6 +234,18 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
       force[u] = f.x;
       force[u + 1] = f.y;
       force[u + 2] = f.z;
+    }
+  }
+
+  // The mouse drag (an addition, docs/model.md): F_d = K_d (q - p) on the dragged particle,
+  // unless it is pinned.
+  const drag_parameters& drag = used.drag;
+  if (drag.enabled && drag.ku >= 0 && drag.ku < N && drag.kv >= 0 && drag.kv < N) {
+    const std::size_t k = index(drag.ku, drag.kv, N);
+    if (!particles_.is_fixed[k]) {
+      const glm::dvec3 pull = drag.stiffness * (drag.target - x(drag.ku, drag.kv));
+      for (int c = 0; c < 3; ++c)
+        force[3 * k + static_cast<std::size_t>(c)] += pull[c];
     }
   }
 }
@@ -273,10 +295,58 @@ void spring_mesh::apply_force() {
     // The stability lab's other schemes (src/core/integrator.cpp), not a question of the lab.
     integrator_.step(d, forces(spring_sets()), particles_);
   }
+  // The contacts, in the order of docs/model.md: the sphere (an addition), the ground
+  // (question 9), self-collision (an addition), then tearing (an addition).
+  if (parameters.sphere.enabled)
+    apply_sphere_contact(parameters.sphere, d.time_step, particles_);
   if (parameters.ground_enabled) {  // question 9
     apply_ground_contact(parameters.ground_height, parameters.ground_friction, d.time_step,
                          particles_);
   }
+  if (parameters.self_collision_thickness > 0.0)
+    self_collision_.apply(grid_size_, parameters.self_collision_thickness, particles_);
+  if (parameters.tear_strain > 0.0)
+    tear_springs(parameters.tear_strain);
+}
+
+std::size_t spring_mesh::tear_springs(double strain) {
+  std::size_t torn = 0;
+  for (auto& family : springs_) {
+    const auto too_long = [&](const spring& s) {
+      const double length =
+          glm::length(particles_.get_position(s.a) - particles_.get_position(s.b));
+      return length > (1.0 + strain) * s.rest_length;
+    };
+    const auto first_torn = std::stable_partition(family.begin(), family.end(),
+                                                  [&](const spring& s) { return !too_long(s); });
+    for (auto it = first_torn; it != family.end(); ++it)
+      set_spring_intact(*it, 0);
+    torn += static_cast<std::size_t>(family.end() - first_torn);
+    family.erase(first_torn, family.end());
+  }
+  return torn;
+}
+
+void spring_mesh::set_spring_intact(const spring& s, std::uint8_t intact) {
+  const int n = grid_size_;
+  const int du = static_cast<int>(s.b % n) - static_cast<int>(s.a % n);
+  const int dv = static_cast<int>(s.b / n) - static_cast<int>(s.a / n);
+  spring_intact_[rest_length_slot(s.a, du, dv)] = intact;
+  spring_intact_[rest_length_slot(s.b, -du, -dv)] = intact;
+}
+
+bool spring_mesh::triangle_intact(int ku, int kv, bool upper) const {
+  const int n = grid_size_;
+  const std::size_t k = index(ku, kv, n);
+  // Lower (ku, kv), (ku+1, kv), (ku+1, kv+1); upper (ku, kv), (ku+1, kv+1), (ku, kv+1): both
+  // share the shear diagonal (ku, kv)-(ku+1, kv+1).
+  const bool diagonal = spring_intact_[rest_length_slot(k, 1, 1)] != 0;
+  if (upper) {
+    return diagonal && spring_intact_[rest_length_slot(k, 0, 1)] != 0 &&
+           spring_intact_[rest_length_slot(index(ku, kv + 1, n), 1, 0)] != 0;
+  }
+  return diagonal && spring_intact_[rest_length_slot(k, 1, 0)] != 0 &&
+         spring_intact_[rest_length_slot(index(ku + 1, kv, n), 0, 1)] != 0;
 }
 
 void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal) {

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "contacts.hpp"
 #include "integrator.hpp"
 #include "parameters.hpp"
 #include "particle_system.hpp"
@@ -59,6 +60,13 @@ class spring_mesh {
   std::span<const spring> springs(spring_family family) const {
     return springs_[static_cast<int>(family)];
   }
+  // Tearing (an addition): removes every spring longer than (1 + strain) L0, for the rest of the
+  // run (until load_model); returns how many. apply_force calls it when tear_strain > 0.
+  std::size_t tear_springs(double strain);
+  // Whether a triangle of the drawn mesh still has its three springs: each cell (ku, kv) is split
+  // along its diagonal (ku, kv)-(ku+1, kv+1) into the lower triangle (ku, kv), (ku+1, kv),
+  // (ku+1, kv+1) and the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1). 0 <= ku, kv < N - 1.
+  bool triangle_intact(int ku, int kv, bool upper) const;
   // L0 of a family, m: h, h sqrt(2) or 2h, as measured on the first cell (the GPU's uniforms).
   double rest_length(spring_family family) const { return rest_length_[static_cast<int>(family)]; }
   // The parameters the simulation uses: effective_cloth_parameters(parameters) for the N of the
@@ -80,6 +88,9 @@ class spring_mesh {
   // The rest length from vertex k to the vertex at (du, dv) from it, du, dv in [-2, 2], at
   // rest_length_slot(k, du, dv): the distances of the initial configuration (compute_force).
   std::vector<double> rest_lengths_;
+  std::vector<std::uint8_t> spring_intact_;  // 1 where a spring joins k to (du, dv), same slots
+  self_collision self_collision_;            // its scratch arrays, kept between steps
+  void set_spring_intact(const spring& s, std::uint8_t intact);  // both ends' slots
   static std::size_t rest_length_slot(std::size_t k, int du, int dv) {
     return 25 * k + static_cast<std::size_t>(5 * (dv + 2) + (du + 2));
   }

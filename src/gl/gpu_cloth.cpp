@@ -195,6 +195,22 @@ bool gpu_cloth::supports_integrator(integrator_kind integrator, std::string& err
   return false;
 }
 
+bool gpu_cloth::supports(const cloth_parameters& p, std::string& error) {
+  if (!supports_integrator(p.dynamics.integrator, error))
+    return false;
+  if (p.tear_strain > 0.0) {
+    error = "tearing (--tear-strain " + std::to_string(p.tear_strain) +
+            "): the GPU path does not tear springs; run the cloth on the CPU";
+    return false;
+  }
+  if (p.self_collision_thickness > 0.0) {
+    error = "self-collision (--self-collision " + std::to_string(p.self_collision_thickness) +
+            "): the GPU path has no self-collision; run the cloth on the CPU";
+    return false;
+  }
+  return true;
+}
+
 bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
   release();
   const int n = cloth.grid_size();
@@ -275,7 +291,7 @@ void gpu_cloth::step(const cloth_parameters& given) {
   const cloth_parameters p = effective_cloth_parameters(resolved);
   if (!is_loaded())
     throw std::logic_error("gpu_cloth::step called before a successful load");
-  if (std::string error; !supports_integrator(p.dynamics.integrator, error))
+  if (std::string error; !supports(p, error))
     throw std::invalid_argument("gpu_cloth::step: " + error);
   saved_gl_state saved;
   saved_gl_state::set_pass_state();
@@ -307,6 +323,18 @@ void gpu_cloth::step(const cloth_parameters& given) {
   glUniform1f(uniform("wind_strength"), static_cast<float>(p.wind_strength));
   glUniform3f(uniform("wind_direction"), static_cast<float>(wind_unit.x),
               static_cast<float>(wind_unit.y), static_cast<float>(wind_unit.z));
+  const bool drag = p.drag.enabled && p.drag.ku >= 0 && p.drag.ku < grid_size_ && p.drag.kv >= 0 &&
+                    p.drag.kv < grid_size_;
+  glUniform1i(uniform("drag_enabled"), drag);
+  glUniform2i(uniform("drag_texel"), p.drag.ku, p.drag.kv);
+  glUniform3f(uniform("drag_target"), static_cast<float>(p.drag.target.x),
+              static_cast<float>(p.drag.target.y), static_cast<float>(p.drag.target.z));
+  glUniform1f(uniform("drag_stiffness"), static_cast<float>(p.drag.stiffness));
+  glUniform1i(uniform("sphere_enabled"), p.sphere.enabled);
+  glUniform3f(uniform("sphere_centre"), static_cast<float>(p.sphere.centre.x),
+              static_cast<float>(p.sphere.centre.y), static_cast<float>(p.sphere.centre.z));
+  glUniform1f(uniform("sphere_radius"), static_cast<float>(p.sphere.radius));
+  glUniform1f(uniform("sphere_friction"), static_cast<float>(p.sphere.friction));
   glUniform1i(uniform("ground_enabled"), p.ground_enabled);
   glUniform1f(uniform("ground_height"), static_cast<float>(p.ground_height));
   glUniform1f(uniform("ground_friction"), static_cast<float>(p.ground_friction));

@@ -52,6 +52,9 @@ class gpu_cloth {
   // The GPU path integrates with semi-implicit and explicit Euler (model.md) only. True when it
   // can run p's integrator; otherwise false with error naming the integrator.
   static bool supports_integrator(integrator_kind integrator, std::string& error);
+  // Everything of p that the GPU path runs: its integrator, the drag and the sphere; not
+  // tearing or self-collision (false, with error naming the option).
+  static bool supports(const cloth_parameters& p, std::string& error);
 
   // Uploads the CPU cloth's CURRENT state (positions, velocities, pinned flags, the rest lengths
   // of its three spring families), so that a run can switch from CPU to GPU at any step. Can be

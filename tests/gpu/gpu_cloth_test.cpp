@@ -103,6 +103,12 @@ struct agreement_case {
   const char* name;
   cloth_parameters parameters;
   int steps = 0;
+  // Contacts with the sphere are decided per particle: one just at its surface can be in
+  // contact on one path and not on the other, which the later steps carry on (measured, N = 12,
+  // semi-implicit: 8e-7 m and 4e-5 m/s after 200 steps, then 5e-5 m and 6e-3 m/s after 250
+  // steps, when such a particle flips). Such cases allow 4 times that.
+  double position_tolerance = ::clothlab::position_tolerance;  // m
+  double velocity_tolerance = ::clothlab::velocity_tolerance;  // m/s
 };
 
 agreement_case with_integrator(agreement_case c, integrator_kind integrator) {
@@ -125,12 +131,20 @@ std::vector<agreement_case> agreement_cases() {
   ground.wind_strength = 2.0;
   ground.wind_direction = {0.0, 1.0, 0.0};
 
+  // The additions: a free cloth falls onto a sphere just below it while a corner is dragged.
+  cloth_parameters sphere_drag = small_cloth();
+  sphere_drag.pins = pin_mode::none;
+  sphere_drag.sphere = {.enabled = true, .centre = {0.0, 0.0, -0.3}, .radius = 0.28};
+  sphere_drag.drag = {
+      .enabled = true, .ku = 11, .kv = 11, .target = {0.6, 0.6, 0.2}, .stiffness = 1000.0};
+
   std::vector<agreement_case> cases;
   for (integrator_kind integrator :
        {integrator_kind::semi_implicit, integrator_kind::explicit_euler}) {
     cases.push_back(with_integrator({"PinsNoWind", pinned}, integrator));
     cases.push_back(with_integrator({"Wind", wind}, integrator));
     cases.push_back(with_integrator({"Ground", ground}, integrator));
+    cases.push_back(with_integrator({"SphereDrag", sphere_drag, 0, 2e-4, 2.5e-2}, integrator));
   }
   return cases;
 }
@@ -147,8 +161,8 @@ TEST_F(SolutionGpuCloth, SameRunsStayWithinTheToleranceOfTheCpu) {
         "  %-10s %-13s after %3d steps: max |p_gpu - p_cpu| = %.2g m, "
         "max |v_gpu - v_cpu| = %.2g m/s\n",
         c.name, integrator.c_str(), c.steps, difference.position, difference.velocity);
-    EXPECT_LE(difference.position, position_tolerance) << c.name << ", " << integrator;
-    EXPECT_LE(difference.velocity, velocity_tolerance) << c.name << ", " << integrator;
+    EXPECT_LE(difference.position, c.position_tolerance) << c.name << ", " << integrator;
+    EXPECT_LE(difference.velocity, c.velocity_tolerance) << c.name << ", " << integrator;
     if (c.parameters.ground_enabled) {  // the case does test the contact
       EXPECT_GT(difference.particles_on_ground, 0) << c.name << ", " << integrator;
     }
@@ -352,6 +366,30 @@ TEST_F(GpuCloth, IntegratorsOtherThanTheTwoEulersAreRefusedByName) {
     p.dynamics.integrator = integrator;
     EXPECT_THROW(gpu.step(p), std::invalid_argument) << name;
   }
+}
+
+}  // namespace
+}  // namespace clothlab
+
+namespace clothlab {
+namespace {
+
+// The GPU path runs the drag and the sphere; tearing and self-collision are the CPU's alone and
+// are refused by name.
+TEST(GpuClothSupport, TearingAndSelfCollisionAreRefusedByName) {
+  cloth_parameters p;
+  std::string error;
+  EXPECT_TRUE(gpu_cloth::supports(p, error)) << error;
+  p.drag.enabled = true;
+  p.sphere.enabled = true;
+  EXPECT_TRUE(gpu_cloth::supports(p, error)) << error;
+  p.tear_strain = 0.2;
+  EXPECT_FALSE(gpu_cloth::supports(p, error));
+  EXPECT_NE(error.find("--tear-strain"), std::string::npos) << error;
+  p.tear_strain = 0.0;
+  p.self_collision_thickness = 0.01;
+  EXPECT_FALSE(gpu_cloth::supports(p, error));
+  EXPECT_NE(error.find("--self-collision"), std::string::npos) << error;
 }
 
 }  // namespace
