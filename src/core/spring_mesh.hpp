@@ -67,6 +67,11 @@ class spring_mesh {
   // along its diagonal (ku, kv)-(ku+1, kv+1) into the lower triangle (ku, kv), (ku+1, kv),
   // (ku+1, kv+1) and the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1). 0 <= ku, kv < N - 1.
   bool triangle_intact(int ku, int kv, bool upper) const;
+  // L0 of the spring from particle k to the particle at (du, dv) from it (du, dv in [-2, 2]), m:
+  // their distance in the initial configuration (0 where there is no such particle).
+  double rest_length(std::size_t k, int du, int dv) const {
+    return rest_lengths_[rest_length_slot(k, du, dv)];
+  }
   // L0 of a family, m: h, h sqrt(2) or 2h, as measured on the first cell (the GPU's uniforms).
   double rest_length(spring_family family) const { return rest_length_[static_cast<int>(family)]; }
   // The parameters the simulation uses: effective_cloth_parameters(parameters) for the N of the

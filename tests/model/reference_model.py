@@ -6,7 +6,9 @@ def sub(a,b): return [a[0]-b[0],a[1]-b[1],a[2]-b[2]]
 def cross(a,b): return [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]]
 def norm(a): return math.sqrt(a[0]*a[0]+a[1]*a[1]+a[2]*a[2])
 def run(stage, steps, dt=None, K=20.0, Ks=5000., Ksh=2000., Kb=500., mu=None, m=1.0, g0=9.8, integ='semi-implicit',
-        chain=2, N=20, S=1.0, pins=True, Kw=0.0, wdir=(0,1,0), ground=-1.0, mug=2.0):
+        chain=2, N=20, S=1.0, pins=True, Kw=0.0, wdir=(0,1,0), ground=-1.0, mug=2.0,
+        drag=None, Kd=1000.0, sphere=None, mus=5.0, self_d=0.0, tear=0.0):
+    # drag: (ku, kv, (x, y, z)); sphere: (cx, cy, cz, r); self_d: thickness; tear: strain
     if dt is None: dt = 0.002 if stage=='cloth' else 0.01
     if mu is None: mu = 0.5 if stage=='cloth' else 0.2
     P=[];V=[];fixed=[];springs=[]
@@ -47,6 +49,10 @@ def run(stage, steps, dt=None, K=20.0, Ks=5000., Ksh=2000., Kb=500., mu=None, m=
                     du=sub(P[min(ku+1,N-1)+N*kv],P[max(ku-1,0)+N*kv]); dv=sub(P[ku+N*min(kv+1,N-1)],P[ku+N*max(kv-1,0)])
                     c=cross(du,dv); l=norm(c); n=[c[0]/l,c[1]/l,c[2]/l]; dd=n[0]*uw[0]+n[1]*uw[1]+n[2]*uw[2]
                     for i in range(3): F[ku+N*kv][i]+=Kw*dd*n[i]
+        if stage=='cloth' and drag is not None:
+            dk=drag[0]+N*drag[1]
+            if not fixed[dk]:
+                for i in range(3): F[dk][i]+=Kd*(drag[2][i]-P[dk][i])
         for k in range(len(P)):
             if fixed[k]: continue
             a=[F[k][0]/m, F[k][1]/m, F[k][2]/m-g0]
@@ -54,7 +60,37 @@ def run(stage, steps, dt=None, K=20.0, Ks=5000., Ksh=2000., Kb=500., mu=None, m=
                 for i in range(3): V[k][i]=(1-mu*dt)*V[k][i]+dt*a[i]; P[k][i]=P[k][i]+dt*V[k][i]
             else:
                 for i in range(3): pn=P[k][i]+dt*V[k][i]; V[k][i]=(1-mu*dt)*V[k][i]+dt*a[i]; P[k][i]=pn
+            if stage=='cloth' and sphere is not None:
+                c=sphere[:3]; r=sphere[3]; d=sub(P[k],c); L=norm(d)
+                if L<r:
+                    n=[d[0]/L,d[1]/L,d[2]/L] if L>0 else [0.,0.,1.]
+                    vn=V[k][0]*n[0]+V[k][1]*n[1]+V[k][2]*n[2]
+                    if vn<0:
+                        for i in range(3): V[k][i]-=vn*n[i]
+                    vn=V[k][0]*n[0]+V[k][1]*n[1]+V[k][2]*n[2]
+                    for i in range(3):
+                        V[k][i]=vn*n[i]+(1-mus*dt)*(V[k][i]-vn*n[i])
+                        P[k][i]=c[i]+r*n[i]
             if stage=='cloth' and ground is not None and P[k][2]<ground:
                 P[k][2]=ground; V[k][2]=max(V[k][2],0.0); V[k][0]*=(1-mug*dt); V[k][1]*=(1-mug*dt)
+        if stage=='cloth' and self_d>0:
+            dP=[[0.,0.,0.] for _ in P]; dV=[[0.,0.,0.] for _ in P]
+            for i in range(len(P)):
+                for j in range(i+1,len(P)):
+                    if abs(i%N-j%N)<=2 and abs(i//N-j//N)<=2: continue
+                    if fixed[i] and fixed[j]: continue
+                    d=sub(P[i],P[j]); L=norm(d)
+                    if not (0<L<self_d): continue
+                    u=[d[0]/L,d[1]/L,d[2]/L]; c=(self_d-L)/2
+                    w=sum((V[i][a]-V[j][a])*u[a] for a in range(3))
+                    si=0. if fixed[i] else (2. if fixed[j] else 1.)
+                    sj=0. if fixed[j] else (2. if fixed[i] else 1.)
+                    for a in range(3):
+                        dP[i][a]+=si*c*u[a]; dP[j][a]-=sj*c*u[a]
+                        if w<0: dV[i][a]-=si*(w/2)*u[a]; dV[j][a]+=sj*(w/2)*u[a]
+            for k in range(len(P)):
+                for a in range(3): P[k][a]+=dP[k][a]; V[k][a]+=dV[k][a]
+        if stage=='cloth' and tear>0:
+            springs=[sp for sp in springs if norm(sub(P[sp[0]],P[sp[1]]))<=(1+tear)*sp[2]]
         record(s)
     return out
