@@ -1,5 +1,6 @@
 #include "gpu_cloth.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -143,6 +144,8 @@ gpu_cloth::~gpu_cloth() {
   release();
   if (empty_vertex_array_ != 0)
     glDeleteVertexArrays(1, &empty_vertex_array_);
+  if (!queries_.empty())
+    glDeleteQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
 }
 
 void gpu_cloth::release() {
@@ -224,6 +227,10 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
       !normal_program_.load("gpu_full_screen.vert", "gpu_normal.frag", error)) {
     return false;
   }
+  if (check_program_.id() == 0 &&
+      !check_program_.load("gpu_full_screen.vert", "gpu_check.frag", error)) {
+    return false;
+  }
   if (empty_vertex_array_ == 0)
     glGenVertexArrays(1, &empty_vertex_array_);
 
@@ -283,7 +290,11 @@ void gpu_cloth::compute_normals() {
   draw_full_screen_pass(grid_size_);
 }
 
-void gpu_cloth::step(const cloth_parameters& given) {
+void gpu_cloth::step(const cloth_parameters& p) {
+  run(p, 1);
+}
+
+int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound) {
   // The mass and stiffnesses the simulation really uses (question 10's resolution mode), for
   // the grid that is loaded.
   cloth_parameters resolved = given;
@@ -293,17 +304,15 @@ void gpu_cloth::step(const cloth_parameters& given) {
     throw std::logic_error("gpu_cloth::step called before a successful load");
   if (std::string error; !supports(p, error))
     throw std::invalid_argument("gpu_cloth::step: " + error);
+  if (count < 1)
+    return 0;
+  // Once per batch: the caller's GL state saved, the uniforms set.
   saved_gl_state saved;
   saved_gl_state::set_pass_state();
   glBindVertexArray(empty_vertex_array_);
 
-  // Pass 1: forces, integrator and ground, from copy read_ into copy write_.
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_[write_]);
   step_program_.use();
   const auto uniform = [&](const char* name) { return step_program_.uniform(name); };
-  bind_texture(0, position_[read_]);
-  bind_texture(1, velocity_[read_]);
-  bind_texture(2, normal_);  // the normals of the positions at the start of the step
   glUniform1i(uniform("position_texture"), 0);
   glUniform1i(uniform("velocity_texture"), 1);
   glUniform1i(uniform("normal_texture"), 2);
@@ -338,13 +347,62 @@ void gpu_cloth::step(const cloth_parameters& given) {
   glUniform1i(uniform("ground_enabled"), p.ground_enabled);
   glUniform1f(uniform("ground_height"), static_cast<float>(p.ground_height));
   glUniform1f(uniform("ground_friction"), static_cast<float>(p.ground_friction));
-  draw_full_screen_pass(grid_size_);
+  normal_program_.use();
+  glUniform1i(normal_program_.uniform("position_texture"), 0);
+  glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
+  const bool check = speed_bound > 0.0;
+  if (check) {
+    check_program_.use();
+    glUniform1i(check_program_.uniform("position_texture"), 0);
+    glUniform1i(check_program_.uniform("velocity_texture"), 1);
+    glUniform1f(check_program_.uniform("speed_bound"),
+                static_cast<float>(std::min(speed_bound, 1e30)));
+    while (queries_.size() < static_cast<std::size_t>(count)) {
+      GLuint query = 0;
+      glGenQueries(1, &query);
+      queries_.push_back(query);
+    }
+  }
 
-  // Ping-pong: the copy just written becomes the current state, the old one the next target.
-  std::swap(read_, write_);
+  for (int s = 0; s < count; ++s) {
+    // Pass 1: forces, integrator and contacts, from copy read_ into copy write_.
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_[write_]);
+    step_program_.use();
+    bind_texture(0, position_[read_]);
+    bind_texture(1, velocity_[read_]);
+    bind_texture(2, normal_);  // the normals of the positions at the start of the step
+    draw_full_screen_pass(grid_size_);
 
-  // Pass 2: the normals of the new positions, for the renderer and the next step's wind.
-  compute_normals();
+    // Ping-pong: the copy just written becomes the current state, the old one the next target.
+    std::swap(read_, write_);
+
+    // Pass 2: the normals of the new positions, for the renderer and the next step's wind.
+    glBindFramebuffer(GL_FRAMEBUFFER, normal_framebuffer_);
+    normal_program_.use();
+    bind_texture(0, position_[read_]);
+    draw_full_screen_pass(grid_size_);
+
+    // The divergence check of this step: counted by a query, read after the batch.
+    if (check) {
+      check_program_.use();
+      bind_texture(0, position_[read_]);
+      bind_texture(1, velocity_[read_]);
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      glBeginQuery(GL_SAMPLES_PASSED, queries_[static_cast<std::size_t>(s)]);
+      draw_full_screen_pass(grid_size_);
+      glEndQuery(GL_SAMPLES_PASSED);
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    }
+  }
+  if (check) {
+    for (int s = 0; s < count; ++s) {
+      GLuint diverged = 0;
+      glGetQueryObjectuiv(queries_[static_cast<std::size_t>(s)], GL_QUERY_RESULT, &diverged);
+      if (diverged != 0)
+        return s + 1;
+    }
+  }
+  return 0;
 }
 
 double gpu_cloth::time_steps(const cloth_parameters& p, int count) {

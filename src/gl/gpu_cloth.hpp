@@ -69,6 +69,13 @@ class gpu_cloth {
   // spring_mesh::load_model and a new load(). Throws std::logic_error before a successful load,
   // std::invalid_argument for an integrator that supports_integrator refuses.
   void step(const cloth_parameters& p);
+  // `count` steps as one batch: the caller's GL state saved and the uniforms set once. With
+  // speed_bound > 0 (m/s) every step is also checked on the GPU, without reading the state
+  // back: an occlusion query counts the particles that are not finite or faster than the bound
+  // (shaders/gpu_check.frag). Returns the first step of the batch (1..count) after which a
+  // particle diverged, 0 when none did (or without the check). The state then is that of the
+  // end of the batch.
+  int run(const cloth_parameters& p, int count, double speed_bound = 0.0);
 
   // Runs `count` steps and returns the mean wall-clock seconds per step, with glFinish before
   // and after, so that the GPU's work is counted, not only its submission.
@@ -93,6 +100,8 @@ class gpu_cloth {
   std::array<float, 3> rest_length_{};  // L0 of the structural, shear, bending springs: h, h√2, 2h
   shader_program step_program_;
   shader_program normal_program_;
+  shader_program check_program_;   // the divergence check (run)
+  std::vector<GLuint> queries_;    // one occlusion query per step of a checked batch
   GLuint empty_vertex_array_ = 0;  // the full-screen triangle needs no vertex data
 
   // Ping-pong: copy read_ holds the current state, copy write_ receives the next one; they swap

@@ -394,3 +394,76 @@ TEST(GpuClothSupport, TearingAndSelfCollisionAreRefusedByName) {
 
 }  // namespace
 }  // namespace clothlab
+
+namespace clothlab {
+namespace {
+
+using GpuBatch = GpuCloth;
+
+// run(p, count) is count steps: the same state, bit for bit, as count calls of step(p).
+TEST_F(GpuBatch, ABatchIsTheSameAsSingleSteps) {
+  cloth_parameters p = small_cloth();
+  p.wind_strength = 3.0;
+  spring_mesh one_by_one(p);
+  spring_mesh batched(p);
+  gpu_cloth a, b;
+  std::string error;
+  ASSERT_TRUE(a.load(one_by_one, error)) << error;
+  ASSERT_TRUE(b.load(batched, error)) << error;
+  for (int s = 0; s < 40; ++s)
+    a.step(p);
+  EXPECT_EQ(b.run(p, 40), 0);
+  a.read_state(one_by_one);
+  b.read_state(batched);
+  EXPECT_EQ(one_by_one.particles().position, batched.particles().position);
+  EXPECT_EQ(one_by_one.particles().velocity, batched.particles().velocity);
+}
+
+// The check on the GPU names the same step as reading the state back after every step and
+// looking for a speed past the bound: a free cloth under 100 g passes 50 m/s at its 6th step
+// (9.81 m/s gained per step of 0.01 s).
+TEST_F(GpuBatch, TheGpuDivergenceCheckNamesTheStepThatReadingBackFinds) {
+  cloth_parameters p = small_cloth();
+  p.pins = pin_mode::none;
+  p.dynamics.gravity = 981.0;
+  p.dynamics.damping = 0.0;
+  p.dynamics.time_step = 0.01;
+  const double bound = 50.0;  // m/s
+  spring_mesh cloth(p);
+  gpu_cloth gpu;
+  std::string error;
+  ASSERT_TRUE(gpu.load(cloth, error)) << error;
+  int read_back_step = 0;
+  for (int s = 1; s <= 200 && read_back_step == 0; ++s) {
+    gpu.step(p);
+    gpu.read_state(cloth);
+    for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+      const glm::dvec3 v = cloth.particles().get_velocity(k);
+      if (!std::isfinite(glm::length(v)) || glm::length(v) > bound)
+        read_back_step = s;
+    }
+  }
+  ASSERT_EQ(read_back_step, 6);
+  spring_mesh again(p);
+  ASSERT_TRUE(gpu.load(again, error)) << error;
+  EXPECT_EQ(gpu.run(p, 200, bound), read_back_step);
+  // A stable cloth: nothing found.
+  cloth_parameters stable = small_cloth();
+  spring_mesh calm(stable);
+  ASSERT_TRUE(gpu.load(calm, error)) << error;
+  EXPECT_EQ(gpu.run(stable, 100, bound), 0);
+}
+
+TEST_F(GpuBatch, TheGpuDivergenceCheckSeesANotANumber) {
+  cloth_parameters p = small_cloth();
+  p.pins = pin_mode::none;
+  spring_mesh cloth(p);
+  cloth.particles().velocity[3 * 5 + 1] = std::nan("");
+  gpu_cloth gpu;
+  std::string error;
+  ASSERT_TRUE(gpu.load(cloth, error)) << error;
+  EXPECT_EQ(gpu.run(p, 3, 1e6), 1);
+}
+
+}  // namespace
+}  // namespace clothlab
