@@ -290,6 +290,42 @@ void gpu_cloth::compute_normals() {
   draw_full_screen_pass(grid_size_);
 }
 
+void set_step_uniforms(const shader_program& program, const cloth_parameters& p, int grid_size,
+                       const std::array<float, 3>& rest_length) {
+  const auto uniform = [&](const char* name) { return program.uniform(name); };
+  glUniform1i(uniform("grid_size"), grid_size);
+  glUniform3f(uniform("stiffness"), static_cast<float>(p.structural_stiffness),
+              static_cast<float>(p.shear_stiffness), static_cast<float>(p.bending_stiffness));
+  glUniform3f(uniform("rest_length"), rest_length[0], rest_length[1], rest_length[2]);
+  const dynamics_parameters& d = p.dynamics;
+  glUniform1f(uniform("time_step"), static_cast<float>(d.time_step));
+  glUniform1f(uniform("damping"), static_cast<float>(d.damping));
+  glUniform1f(uniform("mass"), static_cast<float>(d.mass));
+  glUniform1f(uniform("gravity"), static_cast<float>(d.gravity));
+  glUniform1i(uniform("explicit_euler"), d.integrator == integrator_kind::explicit_euler);
+  // u_w, unit. K_w = 0 means no wind at all, as on the CPU, whatever u_w (even a zero one).
+  const glm::dvec3 wind_unit =
+      p.wind_strength != 0.0 ? p.wind_direction / glm::length(p.wind_direction) : glm::dvec3(0.0);
+  glUniform1f(uniform("wind_strength"), static_cast<float>(p.wind_strength));
+  glUniform3f(uniform("wind_direction"), static_cast<float>(wind_unit.x),
+              static_cast<float>(wind_unit.y), static_cast<float>(wind_unit.z));
+  const bool drag = p.drag.enabled && p.drag.ku >= 0 && p.drag.ku < grid_size && p.drag.kv >= 0 &&
+                    p.drag.kv < grid_size;
+  glUniform1i(uniform("drag_enabled"), drag);
+  glUniform2i(uniform("drag_texel"), p.drag.ku, p.drag.kv);
+  glUniform3f(uniform("drag_target"), static_cast<float>(p.drag.target.x),
+              static_cast<float>(p.drag.target.y), static_cast<float>(p.drag.target.z));
+  glUniform1f(uniform("drag_stiffness"), static_cast<float>(p.drag.stiffness));
+  glUniform1i(uniform("sphere_enabled"), p.sphere.enabled);
+  glUniform3f(uniform("sphere_centre"), static_cast<float>(p.sphere.centre.x),
+              static_cast<float>(p.sphere.centre.y), static_cast<float>(p.sphere.centre.z));
+  glUniform1f(uniform("sphere_radius"), static_cast<float>(p.sphere.radius));
+  glUniform1f(uniform("sphere_friction"), static_cast<float>(p.sphere.friction));
+  glUniform1i(uniform("ground_enabled"), p.ground_enabled);
+  glUniform1f(uniform("ground_height"), static_cast<float>(p.ground_height));
+  glUniform1f(uniform("ground_friction"), static_cast<float>(p.ground_friction));
+}
+
 void gpu_cloth::step(const cloth_parameters& p) {
   run(p, 1);
 }
@@ -312,41 +348,10 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
   glBindVertexArray(empty_vertex_array_);
 
   step_program_.use();
-  const auto uniform = [&](const char* name) { return step_program_.uniform(name); };
-  glUniform1i(uniform("position_texture"), 0);
-  glUniform1i(uniform("velocity_texture"), 1);
-  glUniform1i(uniform("normal_texture"), 2);
-  glUniform1i(uniform("grid_size"), grid_size_);
-  glUniform3f(uniform("stiffness"), static_cast<float>(p.structural_stiffness),
-              static_cast<float>(p.shear_stiffness), static_cast<float>(p.bending_stiffness));
-  glUniform3f(uniform("rest_length"), rest_length_[0], rest_length_[1], rest_length_[2]);
-  const dynamics_parameters& d = p.dynamics;
-  glUniform1f(uniform("time_step"), static_cast<float>(d.time_step));
-  glUniform1f(uniform("damping"), static_cast<float>(d.damping));
-  glUniform1f(uniform("mass"), static_cast<float>(d.mass));
-  glUniform1f(uniform("gravity"), static_cast<float>(d.gravity));
-  glUniform1i(uniform("explicit_euler"), d.integrator == integrator_kind::explicit_euler);
-  // u_w, unit. K_w = 0 means no wind at all, as on the CPU, whatever u_w (even a zero one).
-  const glm::dvec3 wind_unit =
-      p.wind_strength != 0.0 ? p.wind_direction / glm::length(p.wind_direction) : glm::dvec3(0.0);
-  glUniform1f(uniform("wind_strength"), static_cast<float>(p.wind_strength));
-  glUniform3f(uniform("wind_direction"), static_cast<float>(wind_unit.x),
-              static_cast<float>(wind_unit.y), static_cast<float>(wind_unit.z));
-  const bool drag = p.drag.enabled && p.drag.ku >= 0 && p.drag.ku < grid_size_ && p.drag.kv >= 0 &&
-                    p.drag.kv < grid_size_;
-  glUniform1i(uniform("drag_enabled"), drag);
-  glUniform2i(uniform("drag_texel"), p.drag.ku, p.drag.kv);
-  glUniform3f(uniform("drag_target"), static_cast<float>(p.drag.target.x),
-              static_cast<float>(p.drag.target.y), static_cast<float>(p.drag.target.z));
-  glUniform1f(uniform("drag_stiffness"), static_cast<float>(p.drag.stiffness));
-  glUniform1i(uniform("sphere_enabled"), p.sphere.enabled);
-  glUniform3f(uniform("sphere_centre"), static_cast<float>(p.sphere.centre.x),
-              static_cast<float>(p.sphere.centre.y), static_cast<float>(p.sphere.centre.z));
-  glUniform1f(uniform("sphere_radius"), static_cast<float>(p.sphere.radius));
-  glUniform1f(uniform("sphere_friction"), static_cast<float>(p.sphere.friction));
-  glUniform1i(uniform("ground_enabled"), p.ground_enabled);
-  glUniform1f(uniform("ground_height"), static_cast<float>(p.ground_height));
-  glUniform1f(uniform("ground_friction"), static_cast<float>(p.ground_friction));
+  glUniform1i(step_program_.uniform("position_texture"), 0);
+  glUniform1i(step_program_.uniform("velocity_texture"), 1);
+  glUniform1i(step_program_.uniform("normal_texture"), 2);
+  set_step_uniforms(step_program_, p, grid_size_, rest_length_);
   normal_program_.use();
   glUniform1i(normal_program_.uniform("position_texture"), 0);
   glUniform1i(normal_program_.uniform("grid_size"), grid_size_);

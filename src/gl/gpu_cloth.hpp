@@ -38,6 +38,11 @@
 
 namespace clothlab {
 
+// Sets the uniforms of one step of the model (shaders/gpu_step.frag, gpu_compute_step.comp) for
+// the cloth parameters p (effective: question 10's scaling applied), on the program in use.
+void set_step_uniforms(const shader_program& program, const cloth_parameters& p, int grid_size,
+                       const std::array<float, 3>& rest_length);
+
 class gpu_cloth {
  public:
   gpu_cloth() = default;

@@ -43,22 +43,28 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
             ": both sides must be at least 1 pixel";
     return nullptr;
   }
-  const int attributes[] = {OSMESA_FORMAT,
-                            OSMESA_RGBA,
-                            OSMESA_DEPTH_BITS,
-                            24,
-                            OSMESA_STENCIL_BITS,
-                            0,
-                            OSMESA_ACCUM_BITS,
-                            0,
-                            OSMESA_PROFILE,
-                            OSMESA_CORE_PROFILE,
-                            OSMESA_CONTEXT_MAJOR_VERSION,
-                            3,
-                            OSMESA_CONTEXT_MINOR_VERSION,
-                            3,
-                            0};
-  OSMesaContext context = OSMesaCreateContextAttribs(attributes, nullptr);
+  // 4.3 core (compute shaders) where Mesa has it, else 3.3 core.
+  OSMesaContext context = nullptr;
+  for (const int version : {43, 33}) {
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              24,
+                              OSMESA_STENCIL_BITS,
+                              0,
+                              OSMESA_ACCUM_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_CORE_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              version / 10,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              version % 10,
+                              0};
+    context = OSMesaCreateContextAttribs(attributes, nullptr);
+    if (context != nullptr)
+      break;
+  }
   if (context == nullptr) {
     error = "OSMesa could not create an OpenGL 3.3 core context";
     return nullptr;

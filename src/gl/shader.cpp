@@ -98,12 +98,25 @@ bool shader_program::load(std::string_view vertex_file, std::string_view fragmen
     glDeleteShader(vertex);
     return false;
   }
+  return link({vertex, fragment},
+              shader_path(vertex_file).string() + " + " + std::string(fragment_file), error);
+}
+
+bool shader_program::load_compute(std::string_view compute_file, std::string& error) {
+  GLuint compute = compile(GL_COMPUTE_SHADER, compute_file, error);
+  if (compute == 0)
+    return false;
+  return link({compute}, shader_path(compute_file).string(), error);
+}
+
+bool shader_program::link(std::initializer_list<GLuint> shaders, const std::string& files,
+                          std::string& error) {
   GLuint program = glCreateProgram();
-  glAttachShader(program, vertex);
-  glAttachShader(program, fragment);
+  for (GLuint shader : shaders)
+    glAttachShader(program, shader);
   glLinkProgram(program);
-  glDeleteShader(vertex);
-  glDeleteShader(fragment);
+  for (GLuint shader : shaders)
+    glDeleteShader(shader);
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (ok != GL_TRUE) {
@@ -111,8 +124,7 @@ bool shader_program::load(std::string_view vertex_file, std::string_view fragmen
     glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
     glGetProgramInfoLog(program, length, nullptr, log.data());
-    error = shader_path(vertex_file).string() + " + " + std::string(fragment_file) +
-            ": do not link:\n" + log.c_str();
+    error = files + ": do not link:\n" + log.c_str();
     glDeleteProgram(program);
     return false;
   }

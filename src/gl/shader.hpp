@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -30,12 +31,16 @@ class shader_program {
   // Compiles shaders/<vertex_file> and shaders/<fragment_file> and links them. On failure returns
   // false and sets error to "shaders/<file>: <what> ... <info log>".
   bool load(std::string_view vertex_file, std::string_view fragment_file, std::string& error);
+  // Compiles and links the compute shader shaders/<compute_file> (OpenGL 4.3); same errors.
+  bool load_compute(std::string_view compute_file, std::string& error);
 
   GLuint id() const { return id_; }
   void use() const { glUseProgram(id_); }
   GLint uniform(const char* name) const { return glGetUniformLocation(id_, name); }
 
  private:
+  // Links the compiled shaders (and deletes them); files names them in an error.
+  bool link(std::initializer_list<GLuint> shaders, const std::string& files, std::string& error);
   GLuint id_ = 0;
 };
 

@@ -11,6 +11,7 @@
 #include "gl.hpp"
 #include "gl_context.hpp"
 #include "gpu_cloth.hpp"
+#include "gpu_cloth_compute.hpp"
 #include "spring_mesh.hpp"
 
 namespace clothlab {
@@ -463,6 +464,58 @@ TEST_F(GpuBatch, TheGpuDivergenceCheckSeesANotANumber) {
   std::string error;
   ASSERT_TRUE(gpu.load(cloth, error)) << error;
   EXPECT_EQ(gpu.run(p, 3, 1e6), 1);
+}
+
+}  // namespace
+}  // namespace clothlab
+
+namespace clothlab {
+namespace {
+
+using SolutionGpuCompute = GpuCloth;
+
+// The compute-shader path against the CPU: the same cases and tolerances as the fragment path.
+TEST_F(SolutionGpuCompute, SameRunsStayWithinTheToleranceOfTheCpu) {
+  std::string error;
+  if (!gpu_cloth_compute::available(error))
+    GTEST_SKIP() << error;
+  for (const agreement_case& c : agreement_cases()) {
+    spring_mesh cpu(c.parameters);
+    spring_mesh result(c.parameters);
+    gpu_cloth_compute gpu;
+    ASSERT_TRUE(gpu.load(cpu, error)) << error;
+    for (int s = 0; s < c.steps; ++s)
+      cpu.step();
+    gpu.run(c.parameters, c.steps);
+    gpu.read_state(result);
+    const double position = max_position_difference(cpu, result);
+    const double velocity = max_difference(cpu.particles().velocity, result.particles().velocity);
+    const std::string integrator(integrator_name(c.parameters.dynamics.integrator));
+    std::printf("  compute %-10s %-13s after %3d steps: %.2g m, %.2g m/s\n", c.name,
+                integrator.c_str(), c.steps, position, velocity);
+    EXPECT_LE(position, c.position_tolerance) << c.name << ", " << integrator;
+    EXPECT_LE(velocity, c.velocity_tolerance) << c.name << ", " << integrator;
+  }
+}
+
+// It can fail: a 1 % stiffer cloth on the compute path leaves the tolerance. (The student copy
+// has no compute path: its step shader would hold question 12's answer.)
+TEST_F(SolutionGpuCompute, TheComparisonFailsForAnotherCloth) {
+  std::string error;
+  if (!gpu_cloth_compute::available(error))
+    GTEST_SKIP() << error;
+  cloth_parameters p = small_cloth();
+  cloth_parameters stiffer = p;
+  stiffer.structural_stiffness *= 1.01;
+  spring_mesh cpu(p);
+  spring_mesh result(p);
+  gpu_cloth_compute gpu;
+  ASSERT_TRUE(gpu.load(cpu, error)) << error;
+  for (int s = 0; s < 300; ++s)
+    cpu.step();
+  gpu.run(stiffer, 300);
+  gpu.read_state(result);
+  EXPECT_GT(max_position_difference(cpu, result), position_tolerance);
 }
 
 }  // namespace

@@ -1,0 +1,147 @@
+#include "gpu_cloth_compute.hpp"
+
+#include <stdexcept>
+
+#include "gpu_cloth.hpp"
+
+namespace clothlab {
+namespace {
+
+GLuint create_buffer(const std::vector<float>& data) {
+  GLuint buffer = 0;
+  glGenBuffers(1, &buffer);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+  glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)),
+               data.data(), GL_DYNAMIC_COPY);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  return buffer;
+}
+
+GLuint groups(int n) {
+  return static_cast<GLuint>((n + 7) / 8);  // local size 8 x 8
+}
+
+}  // namespace
+
+gpu_cloth_compute::~gpu_cloth_compute() {
+  release();
+}
+
+void gpu_cloth_compute::release() {
+  grid_size_ = 0;
+  if (position_[0] == 0)
+    return;
+  glDeleteBuffers(2, position_.data());
+  glDeleteBuffers(2, velocity_.data());
+  glDeleteBuffers(1, &normal_);
+  position_ = {};
+  velocity_ = {};
+  normal_ = 0;
+}
+
+bool gpu_cloth_compute::available(std::string& error) {
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major > 4 || (major == 4 && minor >= 3))
+    return true;
+  error = "the compute-shader path needs OpenGL 4.3; this context has " + std::to_string(major) +
+          "." + std::to_string(minor);
+  return false;
+}
+
+bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
+  release();
+  if (!available(error))
+    return false;
+  if (step_program_.id() == 0 && !step_program_.load_compute("gpu_compute_step.comp", error))
+    return false;
+  if (normal_program_.id() == 0 && !normal_program_.load_compute("gpu_compute_normal.comp", error))
+    return false;
+  rest_length_ = {static_cast<float>(cloth.rest_length(spring_family::structural)),
+                  static_cast<float>(cloth.rest_length(spring_family::shear)),
+                  static_cast<float>(cloth.rest_length(spring_family::bending))};
+  const particle_system& particles = cloth.particles();
+  const std::size_t count = particles.size();
+  std::vector<float> positions(4 * count), velocities(4 * count);
+  for (std::size_t k = 0; k < count; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      positions[4 * k + c] = static_cast<float>(particles.position[3 * k + c]);
+      velocities[4 * k + c] = static_cast<float>(particles.velocity[3 * k + c]);
+    }
+    positions[4 * k + 3] = particles.is_fixed[k] ? 1.0f : 0.0f;  // w: pinned
+  }
+  for (std::size_t copy = 0; copy < 2; ++copy) {
+    position_[copy] = create_buffer(positions);
+    velocity_[copy] = create_buffer(velocities);
+  }
+  normal_ = create_buffer(std::vector<float>(4 * count, 0.0f));
+  read_ = 0;
+  grid_size_ = cloth.grid_size();
+  // The normals of the initial positions.
+  normal_program_.use();
+  glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
+  glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glUseProgram(0);
+  return true;
+}
+
+void gpu_cloth_compute::run(const cloth_parameters& given, int count) {
+  if (!is_loaded())
+    throw std::logic_error("gpu_cloth_compute::run called before a successful load");
+  cloth_parameters resolved = given;
+  resolved.grid_size = grid_size_;
+  const cloth_parameters p = effective_cloth_parameters(resolved);
+  if (std::string error; !gpu_cloth::supports(p, error))
+    throw std::invalid_argument("gpu_cloth_compute::run: " + error);
+  step_program_.use();
+  set_step_uniforms(step_program_, p, grid_size_, rest_length_);
+  normal_program_.use();
+  glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
+  for (int s = 0; s < count; ++s) {
+    const int write = 1 - read_;
+    step_program_.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, velocity_[read_]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, position_[write]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, velocity_[write]);
+    glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    read_ = write;  // ping-pong: the copy just written is the current state
+
+    normal_program_.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
+    glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  glUseProgram(0);
+}
+
+void gpu_cloth_compute::read_state(spring_mesh& cloth) const {
+  if (cloth.grid_size() != grid_size_)
+    throw std::invalid_argument(
+        "gpu_cloth_compute::read_state: the cloth has N = " + std::to_string(cloth.grid_size()) +
+        ", the GPU state N = " + std::to_string(grid_size_));
+  particle_system& particles = cloth.particles();
+  const std::size_t count = particles.size();
+  readback_.resize(4 * count);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  for (const auto& [buffer, target] : {std::pair{position_[read_], &particles.position},
+                                       std::pair{velocity_[read_], &particles.velocity}}) {
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                       static_cast<GLsizeiptr>(readback_.size() * sizeof(float)), readback_.data());
+    for (std::size_t k = 0; k < count; ++k) {
+      for (std::size_t c = 0; c < 3; ++c)
+        (*target)[3 * k + c] = static_cast<double>(readback_[4 * k + c]);
+    }
+  }
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+}
+
+}  // namespace clothlab

@@ -1,0 +1,56 @@
+// The compute-shader GPU path of the cloth (--backend gpu-compute, issue 9): the model of
+// docs/model.md in single precision, like gpu_cloth, but in OpenGL 4.3 compute shaders over
+// shader storage buffers (one vec4 per particle, particle k = ku + N kv at element k) instead of
+// fragment shaders over textures: no rasterisation, no framebuffer. One step, two dispatches:
+// shaders/gpu_compute_step.comp (forces, integrator, sphere, ground) from copy read_ into copy
+// write_ of the positions and velocities, which then swap, and shaders/gpu_compute_normal.comp
+// (the normals of the new positions). It runs what gpu_cloth runs (supports() is the same).
+// Needs a 4.3 context (the off-screen ones ask for it); load() refuses an older one by name.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "gl.hpp"
+#include "shader.hpp"
+#include "spring_mesh.hpp"
+
+namespace clothlab {
+
+class gpu_cloth_compute {
+ public:
+  gpu_cloth_compute() = default;
+  ~gpu_cloth_compute();
+  gpu_cloth_compute(const gpu_cloth_compute&) = delete;
+  gpu_cloth_compute& operator=(const gpu_cloth_compute&) = delete;
+
+  // True when the current context has compute shaders (OpenGL 4.3); otherwise false with an
+  // error naming the version it has.
+  static bool available(std::string& error);
+
+  // Uploads the cloth's current state; false with a full-sentence error when the context is
+  // older than 4.3 or a shader is missing or does not compile.
+  bool load(const spring_mesh& cloth, std::string& error);
+  bool is_loaded() const { return grid_size_ != 0; }
+  // `count` steps (uniforms set once). Throws like gpu_cloth::step.
+  void run(const cloth_parameters& p, int count = 1);
+  // Copies the positions and velocities (widened to doubles) into cloth.particles().
+  void read_state(spring_mesh& cloth) const;
+  int grid_size() const { return grid_size_; }
+
+ private:
+  void release();
+
+  int grid_size_ = 0;
+  std::array<float, 3> rest_length_{};
+  shader_program step_program_;
+  shader_program normal_program_;
+  int read_ = 0;  // copy of positions/velocities holding the current state
+  std::array<GLuint, 2> position_{};
+  std::array<GLuint, 2> velocity_{};
+  GLuint normal_ = 0;
+  mutable std::vector<float> readback_;
+};
+
+}  // namespace clothlab
