@@ -1,7 +1,8 @@
 // Question 12: how fast is one step of the cloth on each path: step/cpu/N (spring_mesh::step,
 // the lab's readable code, double precision), step/cpu-parallel/N (cloth_parallel::step, the
 // threaded, vectorised path, double precision, all cores) and step/gpu/N (gpu_cloth::step,
-// fragment shaders, single precision)? Each reports steps/s and the time per spring.
+// fragment shaders, single precision) and step/gpu-compute/N (gpu_cloth_compute, compute
+// shaders)? Each reports steps/s and the time per spring.
 // The GPU step runs in an off-screen OSMesa context: on a machine without a GPU that is
 // llvmpipe, Mesa's software rasteriser on the CPU, so it measures the shader path, not a GPU.
 // Both run the default cloth (two pinned corners, ground) for N x N particles.
@@ -15,6 +16,7 @@
 #include "gl.hpp"
 #include "gl_context.hpp"
 #include "gpu_cloth.hpp"
+#include "gpu_cloth_compute.hpp"
 #include "spring_mesh.hpp"
 
 namespace {
@@ -88,6 +90,27 @@ void gpu_step(benchmark::State& state) {
   count_steps(state, static_cast<int>(state.range(0)));
 }
 
+void gpu_compute_step(benchmark::State& state) {
+  if (offscreen_context() == nullptr) {
+    state.SkipWithError("no off-screen OpenGL context");
+    return;
+  }
+  const int n = static_cast<int>(state.range(0));
+  const clothlab::cloth_parameters p = cloth_of_size(n);
+  clothlab::spring_mesh cloth(p);
+  clothlab::gpu_cloth_compute gpu;
+  std::string error;
+  if (!gpu.load(cloth, error)) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  for (auto _ : state) {
+    gpu.run(p);
+    glFinish();
+  }
+  count_steps(state, n);
+}
+
 }  // namespace
 
 // Wall-clock time: the threads of cpu-parallel and of llvmpipe are missed by the process's
@@ -106,6 +129,13 @@ BENCHMARK(cpu_parallel_step)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(gpu_step)
     ->Name("step/gpu")
+    ->RangeMultiplier(2)
+    ->Range(64, 2048)
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
+
+BENCHMARK(gpu_compute_step)
+    ->Name("step/gpu-compute")
     ->RangeMultiplier(2)
     ->Range(64, 2048)
     ->UseRealTime()
