@@ -65,6 +65,8 @@ clothlab::gl_context* offscreen_context() {
     auto made = clothlab::create_offscreen_context(16, 16, error);
     if (!made)
       std::fprintf(stderr, "clothlab_bench: %s\n", error.c_str());
+    else
+      std::fprintf(stderr, "clothlab_bench: OpenGL: %s\n", made->description().c_str());
     return made;
   }();
   return context.get();
