@@ -271,10 +271,12 @@ class run_outputs {
 // stops the run (exit 3), with where the time step stands against the stage's stability limit
 // (questions 4 and 10).
 template <class Stage>
-bool diverged(const options& o, const Stage& stage, long step, double time_step) {
+bool diverged(const options& o, const Stage& stage, long step, double time_step,
+              progress_line& progress) {
   const divergence_status status = divergence_check(stage);
   if (!status.diverged)
     return false;
+  progress.clear();  // the message starts its own line
   const stability_estimate estimate = estimate_stability(stage);
   std::fprintf(stderr,
                "clothlab: the %s simulation diverged at step %ld (t = %g s): %s; dt omega_max = "
@@ -289,10 +291,11 @@ bool diverged(const options& o, const Stage& stage, long step, double time_step)
 template <class Stage>
 int after_step(const options& o, const Stage& stage, long step, double time_step, run_outputs& out,
                progress_line& progress) {
-  if (diverged(o, stage, step, time_step))
+  if (diverged(o, stage, step, time_step, progress))
     return exit_diverged;
   std::string reason;
   if (!out.record(step, time_step, stage, reason)) {
+    progress.clear();
     std::fprintf(stderr, "clothlab: the %s simulation diverged at step %ld (t = %g s): %s\n",
                  std::string(stage_name(o.stage)).c_str(), step, double(step) * time_step,
                  reason.c_str());
