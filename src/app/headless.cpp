@@ -1,12 +1,20 @@
 #include "headless.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <memory>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "energy.hpp"
 #include "export.hpp"
@@ -19,16 +27,127 @@
 namespace clothlab {
 namespace {
 
-// What a run writes as it goes: the particles' states (--csv) and the energies (--energy-csv),
-// both at step 0, every csv_every steps and at the last step.
+constexpr int exit_failure = 1;
+constexpr int exit_usage = 2;
+constexpr int exit_diverged = 3;
+
+// The work a sweep may ask for (docs/limits.md): past it the command is refused with exit 2.
+constexpr long max_sweep_steps_per_cell = 10'000'000;
+constexpr double max_sweep_steps = 1e9;            // summed over the cells
+constexpr double max_sweep_particle_steps = 1e10;  // steps times moving and fixed particles
+
+// SIGINT, SIGTERM, SIGHUP (issue 12): the handler only records the signal; the step loop sees
+// it after the step in progress, writes nothing more, closes the files (whole lines, renamed
+// into place) and exits with 128 + the signal's number (130, 143, 129). A second signal while
+// the first is being handled ends the program at once, as without the handler.
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void on_stop_signal(int signal_number) {
+  if (stop_signal != 0) {
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+    return;
+  }
+  stop_signal = signal_number;
+}
+
+void install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP})
+    sigaction(signal_number, &action, nullptr);
+}
+
+const char* signal_name(int signal_number) {
+  switch (signal_number) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+  }
+  return "a signal";
+}
+
+// A progress line on standard error for long runs, on a terminal only (nothing in a pipe or a
+// file, so that scripts and tests see the usual output): at most once a second, rewritten in
+// place, cleared at the end.
+class progress_line {
+ public:
+  // The clock is read every `stride` calls to update().
+  progress_line(const char* unit, long total, long stride)
+      : unit_(unit),
+        total_(total),
+        stride_(std::max(stride, 1L)),
+        enabled_(::isatty(STDERR_FILENO) == 1),
+        last_(std::chrono::steady_clock::now()) {}
+  progress_line(const progress_line&) = delete;
+  progress_line& operator=(const progress_line&) = delete;
+  ~progress_line() { clear(); }
+
+  void update(long done) {
+    if (!enabled_ || done % stride_ != 0)
+      return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::seconds(1))
+      return;
+    last_ = now;
+    const double percent = total_ > 0 ? 100.0 * double(done) / double(total_) : 100.0;
+    std::fprintf(stderr, "\rclothlab: %s %ld of %ld (%.1f %%)", unit_, done, total_, percent);
+    std::fflush(stderr);
+    shown_ = true;
+  }
+
+  void clear() {
+    if (shown_)
+      std::fputs("\r\033[K", stderr);  // back to the start of the line, erased
+    shown_ = false;
+  }
+
+ private:
+  const char* unit_;
+  long total_;
+  long stride_;
+  bool enabled_;
+  bool shown_ = false;
+  std::chrono::steady_clock::time_point last_;
+};
+
+// How many steps apart the progress line reads the clock: about 65 536 particle updates, often
+// enough for once a second whatever the cost of a step, rarely enough to cost nothing.
+long clock_stride(std::size_t particles) {
+  return std::max(1L, 65536L / static_cast<long>(std::max<std::size_t>(particles, 1)));
+}
+
+// Every output file of a run, each written to a temporary file and renamed into place at the
+// end (output_file, export.hpp): whole or not at all. Opened before the run, so that a path
+// that cannot be written fails at once rather than after a long run.
 class run_outputs {
  public:
   explicit run_outputs(const options& o) : o_(o), states_(nullptr, &std::fclose) {}
 
-  // Opens the files asked for; false with a message naming the option and the file.
+  // Prepares every file asked for; false with a message naming the option and the file.
   bool open(std::string& error) {
+    const struct {
+      const char* option;
+      const std::string& path;
+      output_file& file;
+      output_file::writer kind;
+    } files[] = {{"--csv", o_.csv_path, csv_file_, output_file::writer::stream},
+                 {"--energy-csv", o_.energy_csv_path, energy_file_, output_file::writer::stream},
+                 {"--obj", o_.obj_path, obj_file_, output_file::writer::file_name},
+                 {"--png", o_.png_path, png_file_, output_file::writer::file_name}};
+    for (const auto& f : files) {
+      if (!f.path.empty() && !f.file.open(f.path, f.kind, error)) {
+        error = std::string(f.option) + " " + f.path + ": cannot write: " + error;
+        return false;
+      }
+    }
     if (!o_.csv_path.empty()) {
-      states_.reset(std::fopen(o_.csv_path.c_str(), "w"));
+      states_.reset(std::fopen(csv_file_.write_path().c_str(), "w"));
       if (!states_) {
         error = "--csv " + o_.csv_path + ": cannot write: " + std::strerror(errno);
         return false;
@@ -36,7 +155,7 @@ class run_outputs {
       write_csv_header(states_.get());
     }
     if (!o_.energy_csv_path.empty()) {
-      energies_.open(o_.energy_csv_path);
+      energies_.open(energy_file_.write_path());
       if (!energies_) {
         error = "--energy-csv " + o_.energy_csv_path + ": cannot write: " + std::strerror(errno);
         return false;
@@ -46,48 +165,118 @@ class run_outputs {
     return true;
   }
 
+  // Writes step `step` when it is one of the steps written. False, writing nothing, when a
+  // number to write is not finite: `reason` says which.
   template <class Stage>
-  void record(long step, double time_step, const Stage& stage) {
+  bool record(long step, double time_step, const Stage& stage, std::string& reason) {
     if (step % o_.csv_every != 0 && step != o_.steps)
-      return;
+      return true;
     const double t = double(step) * time_step;  // t = s dt (model.md)
+    energy_breakdown energy;
+    if (energies_.is_open()) {
+      energy = compute_energy(stage);
+      const std::pair<const char*, double> terms[] = {{"kinetic", energy.kinetic},
+                                                      {"gravity", energy.gravity},
+                                                      {"spring", energy.spring},
+                                                      {"total", energy.total}};
+      for (const auto& [name, value] : terms) {
+        if (!std::isfinite(value)) {
+          char text[96];
+          std::snprintf(text, sizeof text, "the %s energy %g J is not finite", name, value);
+          reason = text;
+          return false;
+        }
+      }
+    }
     if (states_)
       write_csv_step(states_.get(), step, t, stage.particles());
     if (energies_.is_open())
-      write_energy_csv_row(energies_, step, t, compute_energy(stage));
+      write_energy_csv_row(energies_, step, t, energy);
+    return true;
   }
 
-  bool close(std::string& error) {
+  // The OBJ of the final cloth (its normals computed); false with a message.
+  bool write_obj_file(const spring_mesh& cloth, std::string& error) {
+    if (o_.obj_path.empty())
+      return true;
+    if (!write_obj(obj_file_.write_path(), cloth.grid_size(), cloth.particles(), cloth.normals())) {
+      error = "--obj " + o_.obj_path + ": cannot write: " + std::strerror(errno);
+      obj_file_.discard();
+      return false;
+    }
+    return commit(obj_file_, "--obj", error);
+  }
+
+  // Where the PNG writer writes, and the check of what it wrote: stb's writer does not report
+  // a failed write, so the file is read back and must be a whole PNG.
+  const std::string& png_write_path() const { return png_file_.write_path(); }
+  bool commit_png(std::string& error) {
+    if (!png_file_is_whole(png_file_.write_path())) {
+      error = "--png " + o_.png_path + ": error while writing (the image is incomplete)";
+      png_file_.discard();
+      return false;
+    }
+    return commit(png_file_, "--png", error);
+  }
+
+  // Closes the CSVs and renames them into place (keep), or removes them (!keep). False with a
+  // message naming the file when a write, the flush or the close failed: the file is removed.
+  bool close(bool keep, std::string& error) {
     bool ok = true;
     if (states_) {
-      ok = std::ferror(states_.get()) == 0;
-      ok = std::fclose(states_.release()) == 0 && ok;
-      if (!ok)
-        error = "--csv " + o_.csv_path + ": error while writing";
+      bool written = std::ferror(states_.get()) == 0;
+      written = std::fclose(states_.release()) == 0 && written;
+      if (!written) {
+        error = "--csv " + o_.csv_path + ": error while writing: " + std::strerror(errno);
+        csv_file_.discard();
+        ok = false;
+      }
     }
     if (energies_.is_open()) {
       energies_.close();
       if (!energies_) {
-        ok = false;
         error = "--energy-csv " + o_.energy_csv_path + ": error while writing";
+        energy_file_.discard();
+        ok = false;
       }
     }
+    if (!keep || !ok) {
+      csv_file_.discard();
+      energy_file_.discard();
+      return ok;
+    }
+    if (!o_.csv_path.empty())
+      ok = commit(csv_file_, "--csv", error) && ok;
+    if (!o_.energy_csv_path.empty())
+      ok = commit(energy_file_, "--energy-csv", error) && ok;
     return ok;
   }
 
  private:
+  bool commit(output_file& file, const char* option, std::string& error) {
+    std::string why;
+    if (file.commit(why))
+      return true;
+    error = std::string(option) + " " + file.target() + ": cannot write: " + why;
+    return false;
+  }
+
   const options& o_;
+  output_file csv_file_, energy_file_, obj_file_, png_file_;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> states_;
   std::ofstream energies_;
 };
 
-// After every step: a non-finite value or a runaway speed stops the run (exit 3), with where
-// the time step stands against the stage's stability limit (questions 4 and 10).
+// After every step, and for the initial state (step 0): a non-finite value or a runaway speed
+// stops the run (exit 3), with where the time step stands against the stage's stability limit
+// (questions 4 and 10).
 template <class Stage>
-bool diverged(const options& o, const Stage& stage, long step, double time_step) {
+bool diverged(const options& o, const Stage& stage, long step, double time_step,
+              progress_line& progress) {
   const divergence_status status = divergence_check(stage);
   if (!status.diverged)
     return false;
+  progress.clear();  // the message starts its own line
   const stability_estimate estimate = estimate_stability(stage);
   std::fprintf(stderr,
                "clothlab: the %s simulation diverged at step %ld (t = %g s): %s; dt omega_max = "
@@ -97,41 +286,73 @@ bool diverged(const options& o, const Stage& stage, long step, double time_step)
   return true;
 }
 
+// What follows each step s (s = 0: the initial state): the divergence check, the output, the
+// progress line and the stop signals. 0 to go on, else the exit status.
+template <class Stage>
+int after_step(const options& o, const Stage& stage, long step, double time_step, run_outputs& out,
+               progress_line& progress) {
+  if (diverged(o, stage, step, time_step, progress))
+    return exit_diverged;
+  std::string reason;
+  if (!out.record(step, time_step, stage, reason)) {
+    progress.clear();
+    std::fprintf(stderr, "clothlab: the %s simulation diverged at step %ld (t = %g s): %s\n",
+                 std::string(stage_name(o.stage)).c_str(), step, double(step) * time_step,
+                 reason.c_str());
+    return exit_diverged;
+  }
+  progress.update(step);
+  if (stop_signal != 0) {
+    progress.clear();
+    std::fprintf(stderr,
+                 "clothlab: interrupted by %s after step %ld of %ld (t = %g s); the CSV files "
+                 "hold the steps written up to it\n",
+                 signal_name(stop_signal), step, o.steps, double(step) * time_step);
+    return 128 + stop_signal;
+  }
+  return 0;
+}
+
 // Renders the final state into the off-screen context with the stage's fixed camera and writes
 // the PNG. `draw` receives the renderer and the view and draws the state.
 template <class Draw>
-int write_png(const options& o, Draw&& draw) {
+int write_png(const options& o, run_outputs& out, Draw&& draw) {
   std::string error;
   renderer scene_renderer;
   if (!scene_renderer.init(error)) {
     std::fprintf(stderr, "clothlab: %s\n", error.c_str());
-    return 1;
+    return exit_failure;
   }
   draw(scene_renderer, camera::default_for(o.stage));
-  if (!save_framebuffer_png(o.png_path, o.width, o.height, error)) {
+  if (!save_framebuffer_png(out.png_write_path(), o.width, o.height, error)) {
+    std::fprintf(stderr, "clothlab: --png %s: %s\n", o.png_path.c_str(), error.c_str());
+    return exit_failure;
+  }
+  if (!out.commit_png(error)) {
     std::fprintf(stderr, "clothlab: %s\n", error.c_str());
-    return 1;
+    return exit_failure;
   }
   return 0;
 }
 
 template <class Stage>
-int write_cpu_png(const options& o, const Stage& stage) {
-  return write_png(o, [&](renderer& r, const camera& view) {
+int write_cpu_png(const options& o, run_outputs& out, const Stage& stage) {
+  return write_png(o, out, [&](renderer& r, const camera& view) {
     r.draw(stage, view, render_settings{}, o.width, o.height);
   });
 }
 
-// The CPU path, the same for the three stages: step 0 is the initial state, then one step at a
-// time: forces, integration, constraints (inside stage.step()), divergence check, output.
+// The CPU path, the same for the three stages: step 0 is the initial state, checked and
+// written like every other, then one step at a time: forces, integration, constraints (inside
+// stage.step()), divergence check, output.
 template <class Stage>
 int run_cpu(const options& o, Stage& stage, run_outputs& out, double time_step) {
-  out.record(0, time_step, stage);
-  for (long s = 1; s <= o.steps; ++s) {
-    stage.step();
-    if (diverged(o, stage, s, time_step))
-      return 3;
-    out.record(s, time_step, stage);
+  progress_line progress("step", o.steps, clock_stride(stage.particles().size()));
+  for (long s = 0; s <= o.steps; ++s) {
+    if (s > 0)
+      stage.step();
+    if (const int status = after_step(o, stage, s, time_step, out, progress); status != 0)
+      return status;
   }
   return 0;
 }
@@ -143,20 +364,21 @@ int run_gpu(const options& o, spring_mesh& cloth, run_outputs& out) {
   gpu_cloth gpu;
   if (!gpu.load(cloth, error)) {
     std::fprintf(stderr, "clothlab: %s\n", error.c_str());
-    return 1;
+    return exit_failure;
   }
   const double dt = cloth.parameters.dynamics.time_step;
-  out.record(0, dt, cloth);
-  for (long s = 1; s <= o.steps; ++s) {
-    gpu.step(cloth.parameters);
-    gpu.read_state(cloth);
-    if (diverged(o, cloth, s, dt))
-      return 3;
-    out.record(s, dt, cloth);
+  progress_line progress("step", o.steps, clock_stride(cloth.particles().size()));
+  for (long s = 0; s <= o.steps; ++s) {
+    if (s > 0) {
+      gpu.step(cloth.parameters);
+      gpu.read_state(cloth);
+    }
+    if (const int status = after_step(o, cloth, s, dt, out, progress); status != 0)
+      return status;
   }
   if (o.png_path.empty())
     return 0;
-  return write_png(o, [&](renderer& r, const camera& view) {
+  return write_png(o, out, [&](renderer& r, const camera& view) {
     r.draw_from_textures(gpu.position_texture(), gpu.normal_texture(), cloth, view,
                          render_settings{}, o.width, o.height);
   });
@@ -168,6 +390,59 @@ std::vector<double> log_spaced(double from, double to, int n) {
   for (int i = 0; i < n; ++i)
     values.push_back(from * std::pow(to / from, double(i) / (n - 1)));
   return values;
+}
+
+// The particles (moving and fixed) of one sweep row: the spring's 2, the chain's n + 1, the
+// cloth's N^2.
+double particles_of_row(stage_kind stage, int grid_size) {
+  switch (stage) {
+    case stage_kind::spring:
+      return 2;
+    case stage_kind::coupled:
+      return grid_size + 1.0;
+    case stage_kind::cloth:
+      return double(grid_size) * grid_size;
+  }
+  return 1;
+}
+
+// The sweep's work against the bounds (docs/limits.md); false after the one line of exit 2.
+bool sweep_within_bounds(const options& o, const sweep_settings& settings) {
+  const std::string option = o.sweep_time_steps.empty() ? "--sweep-time" : "--sweep-dt";
+  std::vector<int> rows;
+  if (settings.axis == sweep_axis::grid_size) {
+    rows = settings.grid_sizes;
+  } else {
+    const int base = o.stage == stage_kind::cloth ? o.cloth.grid_size : o.coupled.mass_count;
+    rows.assign(settings.stiffnesses.size(), base);
+  }
+  double steps = 0, particle_steps = 0;
+  for (double dt : settings.time_steps) {
+    const long per_cell = sweep_steps_per_cell(settings.simulated_time, dt);
+    if (per_cell > max_sweep_steps_per_cell) {
+      std::fprintf(stderr,
+                   "clothlab: %s: a cell of dt = %g s would take %.3g steps (%g s / dt), more "
+                   "than the limit %ld; choose a larger dt or a shorter --sweep-time\n",
+                   option.c_str(), dt, settings.simulated_time / dt, settings.simulated_time,
+                   max_sweep_steps_per_cell);
+      return false;
+    }
+    for (int n : rows) {
+      steps += double(per_cell);
+      particle_steps += double(per_cell) * particles_of_row(o.stage, n);
+    }
+  }
+  const std::size_t cells = settings.time_steps.size() * rows.size();
+  if (steps > max_sweep_steps || particle_steps > max_sweep_particle_steps) {
+    std::fprintf(stderr,
+                 "clothlab: %s: the sweep's %zu cells would take %.3g steps (%.3g particle "
+                 "steps), more than the limit %.3g (%.3g particle steps); choose fewer cells, a "
+                 "larger dt or a shorter --sweep-time\n",
+                 option.c_str(), cells, steps, particle_steps, max_sweep_steps,
+                 max_sweep_particle_steps);
+    return false;
+  }
+  return true;
 }
 
 // --sweep: the stability map. Unless given, dt spans the theoretical limit of the base
@@ -213,19 +488,61 @@ int run_sweep_map(const options& o) {
       settings.stiffnesses = log_spaced(std::max(base_k, 1e-3) / 4, std::max(base_k, 1e-3) * 4, 9);
     }
   }
+  if (!sweep_within_bounds(o, settings))
+    return exit_usage;
 
-  std::ofstream file(o.sweep_path);
-  if (!file) {
+  output_file file;
+  std::string error;
+  if (!file.open(o.sweep_path, output_file::writer::stream, error)) {
+    std::fprintf(stderr, "clothlab: --sweep %s: cannot write: %s\n", o.sweep_path.c_str(),
+                 error.c_str());
+    return exit_failure;
+  }
+  std::ofstream stream(file.write_path());
+  if (!stream) {
     std::fprintf(stderr, "clothlab: --sweep %s: cannot write: %s\n", o.sweep_path.c_str(),
                  std::strerror(errno));
-    return 1;
+    return exit_failure;
   }
-  const std::vector<sweep_cell> cells = run_sweep(settings);
-  write_sweep_csv(file, cells);
-  file.close();
-  if (!file) {
+
+  // The cells run on worker threads; this one shows the progress and passes a stop signal on
+  // as the sweep's cancel flag (the cells not yet run are left out of the CSV).
+  sweep_progress progress;
+  std::vector<sweep_cell> cells;
+  std::atomic<bool> finished{false};
+  std::thread worker([&] {
+    cells = run_sweep(settings, &progress);
+    finished = true;
+  });
+  {
+    const long total = long(settings.time_steps.size()) *
+                       long(std::max(settings.stiffnesses.size(), settings.grid_sizes.size()));
+    progress_line line("sweep cell", total, 1);
+    while (!finished.load()) {
+      if (stop_signal != 0)
+        progress.cancel = true;
+      line.update(progress.cells_done.load());
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    worker.join();
+  }
+  write_sweep_csv(stream, cells);
+  stream.close();
+  if (!stream) {
     std::fprintf(stderr, "clothlab: --sweep %s: error while writing\n", o.sweep_path.c_str());
-    return 1;
+    return exit_failure;
+  }
+  if (!file.commit(error)) {
+    std::fprintf(stderr, "clothlab: --sweep %s: cannot write: %s\n", o.sweep_path.c_str(),
+                 error.c_str());
+    return exit_failure;
+  }
+  if (stop_signal != 0) {
+    std::fprintf(stderr,
+                 "clothlab: interrupted by %s after %d of %d sweep cells; %s holds those cells\n",
+                 signal_name(stop_signal), progress.cells_done.load(), progress.cells_total.load(),
+                 o.sweep_path.c_str());
+    return 128 + stop_signal;
   }
 
   // The map on standard output: one row per K (or N), one column per dt; '.' stable,
@@ -259,9 +576,43 @@ int run_sweep_map(const options& o) {
   return 0;
 }
 
+// Runs the chosen stage (and writes its PNG and OBJ); the exit status.
+int run_stage(const options& o, run_outputs& out) {
+  switch (o.stage) {
+    case stage_kind::spring: {
+      single_spring stage(o.spring);
+      const int status = run_cpu(o, stage, out, o.spring.dynamics.time_step);
+      return status == 0 && !o.png_path.empty() ? write_cpu_png(o, out, stage) : status;
+    }
+    case stage_kind::coupled: {
+      coupled_springs stage(o.coupled);
+      const int status = run_cpu(o, stage, out, o.coupled.dynamics.time_step);
+      return status == 0 && !o.png_path.empty() ? write_cpu_png(o, out, stage) : status;
+    }
+    case stage_kind::cloth: {
+      spring_mesh cloth(o.cloth);
+      const bool on_gpu = o.backend == backend_kind::gpu;
+      // (the GPU run writes its PNG from its textures)
+      const int status =
+          on_gpu ? run_gpu(o, cloth, out) : run_cpu(o, cloth, out, o.cloth.dynamics.time_step);
+      if (status != 0)
+        return status;
+      cloth.compute_normals();  // of the final positions
+      std::string error;
+      if (!out.write_obj_file(cloth, error)) {
+        std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+        return exit_failure;
+      }
+      return !on_gpu && !o.png_path.empty() ? write_cpu_png(o, out, cloth) : 0;
+    }
+  }
+  return exit_failure;
+}
+
 }  // namespace
 
 int run_headless(const options& o) {
+  install_stop_handlers();
   if (!o.sweep_path.empty())
     return run_sweep_map(o);
 
@@ -269,7 +620,8 @@ int run_headless(const options& o) {
   std::string error;
   if (!out.open(error)) {
     std::fprintf(stderr, "clothlab: %s\n", error.c_str());
-    return 1;
+    out.close(false, error);
+    return exit_failure;
   }
 
   // One off-screen context serves the GPU path and the PNG.
@@ -278,49 +630,23 @@ int run_headless(const options& o) {
     context = create_offscreen_context(o.width, o.height, error);
     if (!context) {
       std::fprintf(stderr, "clothlab: no OpenGL context: %s\n", error.c_str());
-      return 1;
+      out.close(false, error);
+      return exit_failure;
     }
   }
 
-  int status = 0;
-  switch (o.stage) {
-    case stage_kind::spring: {
-      single_spring stage(o.spring);
-      status = run_cpu(o, stage, out, o.spring.dynamics.time_step);
-      if (status == 0 && !o.png_path.empty())
-        status = write_cpu_png(o, stage);
-      break;
-    }
-    case stage_kind::coupled: {
-      coupled_springs stage(o.coupled);
-      status = run_cpu(o, stage, out, o.coupled.dynamics.time_step);
-      if (status == 0 && !o.png_path.empty())
-        status = write_cpu_png(o, stage);
-      break;
-    }
-    case stage_kind::cloth: {
-      spring_mesh cloth(o.cloth);
-      const bool on_gpu = o.backend == backend_kind::gpu;
-      // (the GPU run writes its PNG from its textures)
-      status = on_gpu ? run_gpu(o, cloth, out) : run_cpu(o, cloth, out, o.cloth.dynamics.time_step);
-      if (status != 0)
-        break;
-      cloth.compute_normals();  // of the final positions
-      if (!o.obj_path.empty() &&
-          !write_obj(o.obj_path, cloth.grid_size(), cloth.particles(), cloth.normals())) {
-        std::fprintf(stderr, "clothlab: --obj %s: cannot write: %s\n", o.obj_path.c_str(),
-                     std::strerror(errno));
-        status = 1;
-        break;
-      }
-      if (!on_gpu && !o.png_path.empty())
-        status = write_cpu_png(o, cloth);
-      break;
-    }
-  }
-  if (!out.close(error) && status == 0) {
+  int status = run_stage(o, out);
+  // The CSVs are kept when the run got somewhere: done, diverged (every step before it),
+  // interrupted (every step up to it), or a later failure of the OBJ or the PNG.
+  if (!out.close(true, error)) {
     std::fprintf(stderr, "clothlab: %s\n", error.c_str());
-    status = 1;
+    if (status == 0 || status == exit_diverged)
+      status = exit_failure;
+  }
+  if (status == 0 && stop_signal != 0) {
+    std::fprintf(stderr, "clothlab: interrupted by %s after the last step; the files are whole\n",
+                 signal_name(stop_signal));
+    status = 128 + stop_signal;
   }
   return status;
 }

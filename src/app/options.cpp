@@ -1,9 +1,14 @@
 #include "options.hpp"
 
 #include <CLI/CLI.hpp>
+#include <glm/geometric.hpp>
 
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -15,15 +20,35 @@ constexpr int max_grid_size = 1024;  // 1M particles: well within memory, far be
 constexpr int max_chain = 1000;
 constexpr int max_image_side = 8192;
 
+// The bounds of every number (docs/limits.md). Past them some double overflows (t = s dt, the
+// energy m v^2 / 2, a force K dx, an area S^2 / N^2 that underflows) or the run would not end
+// in any reasonable time. A stable run inside them writes only finite numbers.
+struct bounds {
+  double low, high;
+  const char* unit;
+};
+constexpr bounds time_step_bounds{1e-9, 1.0, "s"};
+constexpr bounds stiffness_bounds{0.0, 1e9, "N/m"};
+constexpr bounds mass_bounds{1e-6, 1e6, "kg"};
+constexpr bounds gravity_bounds{0.0, 1e3, "m/s^2"};
+constexpr bounds size_bounds{1e-3, 1e3, "m"};
+constexpr bounds wind_strength_bounds{-1e6, 1e6, "N"};
+constexpr bounds wind_component_bounds{-1e6, 1e6, ""};
+constexpr double min_wind_direction_length = 1e-6;  // normalised before use
+constexpr bounds ground_height_bounds{-1e3, 1e3, "m"};
+constexpr long max_steps = 1'000'000'000;                 // with dt <= 1 s: t <= 1e9 s
+constexpr bounds grid_list_bounds{1, max_grid_size, ""};  // --sweep-N, whole numbers
+constexpr int max_list_values = 200;
+
 // A usage error: the option and what is wrong with its value.
 struct usage_error {
   std::string message;
 };
 
 std::string format_number(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
 }
 
 void require(bool ok, const std::string& option, double value, const std::string& what) {
@@ -35,23 +60,49 @@ void require_finite(const std::string& option, double value) {
   require(std::isfinite(value), option, value, "must be a finite number");
 }
 
+// low <= value <= high, named with the bounds: "--dt 1e-320: must be between 1e-09 and 1 s".
+void require_within(const std::string& option, double value, const bounds& b) {
+  require_finite(option, value);
+  require(value >= b.low && value <= b.high, option, value,
+          "must be between " + format_number(b.low) + " and " + format_number(b.high) +
+              (*b.unit != '\0' ? std::string(" ") + b.unit : std::string()));
+}
+
+// One number, the same way for every option: the whole text must be a number (strtod's
+// syntax). A value too large for a double is not a finite number; one too small to be a
+// normal double (1e-320) is read as it is, and the option's range then decides.
+std::optional<double> parse_number(const std::string& text) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front())))
+    return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size())
+    return std::nullopt;
+  if (errno == ERANGE && std::abs(x) == HUGE_VAL)
+    return std::numeric_limits<double>::infinity();  // overflow: refused as not finite
+  return x;
+}
+
+double number_or_usage_error(const std::string& option, const std::string& text,
+                             const std::string& expected) {
+  const std::optional<double> x = parse_number(text);
+  if (!x)
+    throw usage_error{option + " " + text + ": " + expected};
+  return *x;
+}
+
 // "X,Y,Z" -> three finite numbers.
 glm::dvec3 parse_vector(const std::string& option, const std::string& text) {
   std::vector<double> values;
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    double x = 0.0;
-    try {
-      x = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || !std::isfinite(x)) {
+    const std::optional<double> x = parse_number(item);
+    if (!x || !std::isfinite(*x)) {
       throw usage_error{option + " " + text + ": expected three finite numbers X,Y,Z"};
     }
-    values.push_back(x);
+    values.push_back(*x);
   }
   if (values.size() != 3 || (!text.empty() && text.back() == ',')) {
     throw usage_error{option + " " + text + ": expected three numbers X,Y,Z"};
@@ -60,20 +111,16 @@ glm::dvec3 parse_vector(const std::string& option, const std::string& text) {
 }
 
 // "A,B,C" (the values) or "FROM:TO:COUNT" (COUNT values spaced evenly on a log scale, both ends
-// included), all positive and finite.
-std::vector<double> parse_list(const std::string& option, const std::string& text) {
+// included), every one of them within `range` (checked before the values are computed, so that
+// a range like 1e-300:1e300 cannot overflow on the way).
+std::vector<double> parse_list(const std::string& option, const std::string& text,
+                               const bounds& range) {
   auto number = [&](const std::string& item) {
-    std::size_t used = 0;
-    double x = NAN;
-    try {
-      x = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || !std::isfinite(x)) {
+    const std::optional<double> x = parse_number(item);
+    if (!x || !std::isfinite(*x)) {
       throw usage_error{option + " " + text + ": '" + item + "' is not a finite number"};
     }
-    return x;
+    return *x;
   };
   std::vector<std::string> items;
   const char separator = text.find(':') != std::string::npos ? ':' : ',';
@@ -90,18 +137,27 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
     const double from = number(items[0]);
     const double to = number(items[1]);
     const double count = number(items[2]);
-    if (!(from > 0 && to > 0) || count != std::floor(count) || count < 2 || count > 200) {
+    if (!(from > 0 && to > 0) || count != std::floor(count) || count < 2 ||
+        count > max_list_values) {
       throw usage_error{option + " " + text +
-                        ": FROM and TO must be positive and COUNT a whole number from 2 to 200"};
+                        ": FROM and TO must be positive and COUNT a whole number from 2 to " +
+                        std::to_string(max_list_values)};
     }
+    require_within(option, from, range);
+    require_within(option, to, range);
     for (int i = 0; i < int(count); ++i) {
       values.push_back(from * std::pow(to / from, i / (count - 1)));
     }
+    values.front() = from;  // exactly, not within rounding of the bounds
+    values.back() = to;
   } else {
     for (const std::string& item : items)
       values.push_back(number(item));
-    if (values.size() > 200)
-      throw usage_error{option + " " + text + ": at most 200 values"};
+    for (double x : values)
+      require_within(option, x, range);
+    if (values.size() > max_list_values)
+      throw usage_error{option + " " + text + ": at most " + std::to_string(max_list_values) +
+                        " values"};
   }
   return values;
 }
@@ -137,6 +193,18 @@ parse_result parse_command_line(int argc, const char* const* argv) {
                                                 {"none", pin_mode::none}};
 
   cloth_parameters& cloth = o.cloth;
+  // Every number is read as text and converted by parse_number after CLI11 is done, so that
+  // "1e-320", "inf" and "1e999" mean the same whatever the option (docs/limits.md).
+  std::map<std::string, std::pair<std::string, double*>> numbers;  // option -> (text, target)
+  // show_default: the target holds the default (a parameter struct's field), shown by --help.
+  auto add_number = [&](const std::string& name, double& target, const std::string& help,
+                        bool show_default = true) {
+    numbers[name].second = &target;
+    CLI::Option* option = app.add_option(name, numbers[name].first, help);
+    if (show_default)
+      option->default_str(format_number(target));
+    return option;
+  };
   app.add_flag("--headless", o.headless, "Run without a window");
   app.add_option("--stage", stage, "spring | coupled | cloth (default cloth)")
       ->check(CLI::IsMember(stages));
@@ -147,28 +215,25 @@ parse_result parse_command_line(int argc, const char* const* argv) {
          "semi-implicit (default) | explicit | verlet | rk4 | implicit (GPU: the first two)")
       ->check(CLI::IsMember(integrators));
   app.add_option("--steps", o.steps, "Steps to run, headless (default 1000)");
-  auto* dt_option = app.add_option("--dt", dt, "Step length, s (spring 0.01, cloth 0.002)");
-  auto* k_option = app.add_option("--K", stiffness, "Stiffness of the spring stages, N/m (20)");
-  app.add_option("--K-struct", cloth.structural_stiffness, "Cloth structural stiffness, N/m")
-      ->capture_default_str();
-  app.add_option("--K-shear", cloth.shear_stiffness, "Cloth shear stiffness, N/m")
-      ->capture_default_str();
-  app.add_option("--K-bend", cloth.bending_stiffness, "Cloth bending stiffness, N/m")
-      ->capture_default_str();
-  auto* mu_option = app.add_option("--mu", damping, "Damping rate mu, 1/s (spring 0.2, cloth 0.5)");
-  auto* mass_option = app.add_option("--mass", mass, "Mass of each moving particle, kg (1)");
-  auto* gravity_option = app.add_option("--gravity", gravity, "Gravity g0 along -z, m/s^2 (9.8)");
+  auto* dt_option = add_number("--dt", dt, "Step length, s (spring 0.01, cloth 0.002)", false);
+  auto* k_option = add_number("--K", stiffness, "Stiffness of the spring stages, N/m (20)", false);
+  add_number("--K-struct", cloth.structural_stiffness, "Cloth structural stiffness, N/m");
+  add_number("--K-shear", cloth.shear_stiffness, "Cloth shear stiffness, N/m");
+  add_number("--K-bend", cloth.bending_stiffness, "Cloth bending stiffness, N/m");
+  auto* mu_option =
+      add_number("--mu", damping, "Damping rate mu, 1/s (spring 0.2, cloth 0.5)", false);
+  auto* mass_option = add_number("--mass", mass, "Mass of each moving particle, kg (1)", false);
+  auto* gravity_option =
+      add_number("--gravity", gravity, "Gravity g0 along -z, m/s^2 (9.8)", false);
   app.add_option("--chain", o.coupled.mass_count, "Moving masses of the coupled stage")
       ->capture_default_str();
   app.add_option("--N", cloth.grid_size, "Cloth grid size: N x N particles")->capture_default_str();
-  app.add_option("--size", cloth.side_length, "Cloth side length, m")->capture_default_str();
+  add_number("--size", cloth.side_length, "Cloth side length, m");
   app.add_option("--pins", pin_choice, "corners (default) | none")->check(CLI::IsMember(pins));
-  app.add_option("--wind-strength", cloth.wind_strength, "Wind strength K_w, N")
-      ->capture_default_str();
+  add_number("--wind-strength", cloth.wind_strength, "Wind strength K_w, N");
   auto* wind_dir_option = app.add_option("--wind-dir", wind_dir, "Wind direction X,Y,Z (0,1,0)");
   auto* ground_option = app.add_option("--ground-z", ground_z, "Ground height, m, or none (-1)");
-  app.add_option("--ground-friction", cloth.ground_friction, "Ground friction rate mu_g, 1/s")
-      ->capture_default_str();
+  add_number("--ground-friction", cloth.ground_friction, "Ground friction rate mu_g, 1/s");
   app.add_option("--csv", o.csv_path, "Write the particles' states to this CSV file");
   app.add_option("--csv-every", o.csv_every, "Write every K-th step (default 1)");
   app.add_option("--obj", o.obj_path, "Write the final cloth as a Wavefront OBJ");
@@ -189,7 +254,7 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   app.add_option("--sweep-dt", sweep_dt, "Sweep dt values: A,B,C or FROM:TO:COUNT (log-spaced)");
   app.add_option("--sweep-K", sweep_k, "Sweep stiffnesses (cloth: K_struct, ratios kept)");
   app.add_option("--sweep-N", sweep_n, "Sweep grid sizes (cloth) or chain lengths (coupled)");
-  app.add_option("--sweep-time", o.sweep_time, "Simulated seconds per sweep cell (2)");
+  add_number("--sweep-time", o.sweep_time, "Simulated seconds per sweep cell (2)", false);
 
   try {
     app.parse(argc, argv);
@@ -207,6 +272,10 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   }
 
   try {
+    for (auto& [name, entry] : numbers) {
+      if (app.count(name) > 0)
+        *entry.second = number_or_usage_error(name, entry.first, "expected a number");
+    }
     o.stage = stages.at(stage);
     o.backend = backends.at(backend);
     if (!pin_choice.empty())
@@ -228,11 +297,11 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     if (!scaling.empty())
       cloth.scaling = *parse_resolution_scaling(scaling);
     if (!sweep_dt.empty())
-      o.sweep_time_steps = parse_list("--sweep-dt", sweep_dt);
+      o.sweep_time_steps = parse_list("--sweep-dt", sweep_dt, time_step_bounds);
     if (!sweep_k.empty())
-      o.sweep_stiffnesses = parse_list("--sweep-K", sweep_k);
+      o.sweep_stiffnesses = parse_list("--sweep-K", sweep_k, stiffness_bounds);
     if (!sweep_n.empty()) {
-      for (double n : parse_list("--sweep-N", sweep_n)) {
+      for (double n : parse_list("--sweep-N", sweep_n, grid_list_bounds)) {
         require(n == std::floor(n) && n >= 1 && n <= max_grid_size, "--sweep-N", n,
                 "must be whole numbers between 1 and " + std::to_string(max_grid_size));
         o.sweep_grid_sizes.push_back(static_cast<int>(n));
@@ -246,18 +315,9 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       if (ground_z == "none") {
         cloth.ground_enabled = false;
       } else {
-        std::size_t used = 0;
-        double z = NAN;
-        try {
-          z = std::stod(ground_z, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used == 0 || used != ground_z.size() || !std::isfinite(z)) {
-          throw usage_error{"--ground-z " + ground_z + ": expected a number or none"};
-        }
         cloth.ground_enabled = true;
-        cloth.ground_height = z;
+        cloth.ground_height =
+            number_or_usage_error("--ground-z", ground_z, "expected a number or none");
       }
     }
 
@@ -265,8 +325,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     const dynamics_parameters& d = o.stage == stage_kind::spring    ? o.spring.dynamics
                                    : o.stage == stage_kind::coupled ? o.coupled.dynamics
                                                                     : o.cloth.dynamics;
-    require_finite("--dt", d.time_step);
-    require(d.time_step > 0, "--dt", d.time_step, "must be positive");
+    // Every bound is in docs/limits.md.
+    require_within("--dt", d.time_step, time_step_bounds);
     require_finite("--mu", d.damping);
     require(d.damping >= 0, "--mu", d.damping, "must be at least 0");
     // (1 - mu dt) must not be negative: for the run's stage headless, for every stage in the
@@ -282,30 +342,43 @@ parse_result parse_command_line(int argc, const char* const* argv) {
                   std::string(stage_name(checked)) + " stage (dt = " + format_number(c.time_step) +
                   ") must be at most 1 (the damping factor 1 - mu dt would be negative)");
     }
-    require_finite("--mass", d.mass);
-    require(d.mass > 0, "--mass", d.mass, "must be positive");
+    require_within("--mass", d.mass, mass_bounds);
     require_finite("--gravity", d.gravity);
     require(d.gravity >= 0, "--gravity", d.gravity, "is a magnitude along -z: at least 0");
-    require_finite("--K", o.spring.stiffness);
-    require(o.spring.stiffness >= 0, "--K", o.spring.stiffness, "must be at least 0");
+    require_within("--gravity", d.gravity, gravity_bounds);
+    require_within("--K", o.spring.stiffness, stiffness_bounds);
     const std::pair<const char*, double> cloth_stiffnesses[] = {
         {"--K-struct", cloth.structural_stiffness},
         {"--K-shear", cloth.shear_stiffness},
         {"--K-bend", cloth.bending_stiffness}};
-    for (const auto& [name, value] : cloth_stiffnesses) {
-      require_finite(name, value);
-      require(value >= 0, name, value, "must be at least 0");
-    }
+    for (const auto& [name, value] : cloth_stiffnesses)
+      require_within(name, value, stiffness_bounds);
     require(o.coupled.mass_count >= 1 && o.coupled.mass_count <= max_chain, "--chain",
             o.coupled.mass_count, "must be between 1 and " + std::to_string(max_chain));
     require(cloth.grid_size >= 2 && cloth.grid_size <= max_grid_size, "--N", cloth.grid_size,
             "must be between 2 and " + std::to_string(max_grid_size));
-    require_finite("--size", cloth.side_length);
-    require(cloth.side_length > 0, "--size", cloth.side_length, "must be positive");
-    require_finite("--wind-strength", cloth.wind_strength);
+    require_within("--size", cloth.side_length, size_bounds);
+    require_within("--wind-strength", cloth.wind_strength, wind_strength_bounds);
     if (cloth.wind_direction == glm::dvec3(0.0)) {
       throw usage_error{"--wind-dir " + wind_dir + ": the wind direction must not be zero"};
     }
+    for (int i = 0; i < 3; ++i) {
+      const double c = cloth.wind_direction[i];
+      if (!(c >= wind_component_bounds.low && c <= wind_component_bounds.high)) {
+        throw usage_error{"--wind-dir " + wind_dir + ": each component must be between " +
+                          format_number(wind_component_bounds.low) + " and " +
+                          format_number(wind_component_bounds.high)};
+      }
+    }
+    // |u| is computed before normalising: its square must not underflow.
+    const double wind_length = std::sqrt(glm::dot(cloth.wind_direction, cloth.wind_direction));
+    if (!(wind_length >= min_wind_direction_length)) {
+      throw usage_error{"--wind-dir " + wind_dir + ": the direction's length " +
+                        format_number(wind_length) + " must be at least " +
+                        format_number(min_wind_direction_length)};
+    }
+    if (cloth.ground_enabled)
+      require_within("--ground-z", cloth.ground_height, ground_height_bounds);
     require_finite("--ground-friction", cloth.ground_friction);
     require(cloth.ground_friction >= 0, "--ground-friction", cloth.ground_friction,
             "must be at least 0");
@@ -313,7 +386,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
             cloth.ground_friction,
             "mu_g dt = " + format_number(cloth.ground_friction * cloth.dynamics.time_step) +
                 " must be at most 1");
-    require(o.steps >= 0, "--steps", double(o.steps), "must be at least 0");
+    require(o.steps >= 0 && o.steps <= max_steps, "--steps", double(o.steps),
+            "must be between 0 and " + format_number(double(max_steps)));
     require(o.csv_every >= 1, "--csv-every", double(o.csv_every), "must be at least 1");
     require(o.width >= 1 && o.width <= max_image_side, "--width", o.width,
             "must be between 1 and " + std::to_string(max_image_side));
@@ -323,10 +397,11 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     require(cloth.reference_grid_size >= 2 && cloth.reference_grid_size <= max_grid_size,
             "--reference-N", cloth.reference_grid_size,
             "must be between 2 and " + std::to_string(max_grid_size));
+    // Every value of a sweep list within the single option's bounds, not only its ends.
     for (double x : o.sweep_time_steps)
-      require(x > 0, "--sweep-dt", x, "must be positive");
+      require_within("--sweep-dt", x, time_step_bounds);
     for (double x : o.sweep_stiffnesses)
-      require(x >= 0, "--sweep-K", x, "must be at least 0");
+      require_within("--sweep-K", x, stiffness_bounds);
     require_finite("--sweep-time", o.sweep_time);
     require(o.sweep_time > 0 && o.sweep_time <= 1000, "--sweep-time", o.sweep_time,
             "must be positive and at most 1000 s");

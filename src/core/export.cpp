@@ -1,9 +1,51 @@
 #include "export.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <memory>
 
 namespace clothlab {
+namespace {
+
+using file_handle = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+
+// The permissions a newly created file gets: 0666 less the process's umask.
+mode_t new_file_mode() {
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  return 0666 & ~mask;
+}
+
+// Creates an empty file named after `pattern` (ending in XXXXXX) with the ordinary permissions;
+// false with errno set.
+bool create_temporary(std::string& pattern) {
+  const int fd = ::mkstemp(pattern.data());
+  if (fd < 0)
+    return false;
+  const bool ok = ::fchmod(fd, new_file_mode()) == 0;
+  const int saved = errno;
+  ::close(fd);
+  if (!ok) {
+    ::unlink(pattern.c_str());
+    errno = saved;
+  }
+  return ok;
+}
+
+std::uint32_t big_endian_32(const unsigned char* b) {
+  return (std::uint32_t(b[0]) << 24) | (std::uint32_t(b[1]) << 16) | (std::uint32_t(b[2]) << 8) |
+         std::uint32_t(b[3]);
+}
+
+}  // namespace
 
 void write_csv_header(std::FILE* out) {
   std::fputs("step,t,particle,x,y,z,vx,vy,vz\n", out);
@@ -20,7 +62,7 @@ void write_csv_step(std::FILE* out, long step, double time, const particle_syste
 
 bool write_obj(const std::string& path, int n, const particle_system& particles,
                std::span<const double> normals) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "w"), &std::fclose);
+  file_handle file(std::fopen(path.c_str(), "w"), &std::fclose);
   if (!file)
     return false;
   std::FILE* out = file.get();
@@ -33,7 +75,14 @@ bool write_obj(const std::string& path, int n, const particle_system& particles,
   }
   for (std::size_t k = 0; k < count; ++k) {
     const double* m = &normals[3 * k];
-    std::fprintf(out, "vn %.17g %.17g %.17g\n", m[0], m[1], m[2]);
+    // A vertex whose triangles have no area (the cloth folded onto a point, or a side so small
+    // that the cross products underflow) has no normal: any unit vector will do, +z.
+    const double length = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    if (std::isfinite(length) && std::abs(length - 1.0) < 1e-3) {
+      std::fprintf(out, "vn %.17g %.17g %.17g\n", m[0], m[1], m[2]);
+    } else {
+      std::fputs("vn 0 0 1\n", out);
+    }
   }
   for (int kv = 0; kv < n; ++kv) {
     for (int ku = 0; ku < n; ++ku) {
@@ -53,6 +102,100 @@ bool write_obj(const std::string& path, int n, const particle_system& particles,
   }
   const bool ok = std::ferror(out) == 0;
   return std::fclose(file.release()) == 0 && ok;
+}
+
+// PNG: an 8-byte signature, then chunks of (length, type, data, CRC), the last one IEND.
+bool png_file_is_whole(const std::string& path) {
+  file_handle file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file)
+    return false;
+  static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  unsigned char header[8];
+  if (std::fread(header, 1, 8, file.get()) != 8 || std::memcmp(header, signature, 8) != 0)
+    return false;
+  for (;;) {
+    unsigned char chunk[8];  // length, type
+    if (std::fread(chunk, 1, 8, file.get()) != 8)
+      return false;
+    const long length = static_cast<long>(big_endian_32(chunk));
+    if (length < 0 || std::fseek(file.get(), length + 4, SEEK_CUR) != 0)  // data and CRC
+      return false;
+    if (std::memcmp(chunk + 4, "IEND", 4) == 0) {
+      const long end = std::ftell(file.get());
+      return std::fseek(file.get(), 0, SEEK_END) == 0 && std::ftell(file.get()) == end;
+    }
+  }
+}
+
+output_file::~output_file() {
+  discard();
+}
+
+bool output_file::open(const std::string& target, writer kind, std::string& error) {
+  discard();
+  target_ = target;
+  copy_into_target_ = false;
+  struct stat info {};
+  const bool exists = ::stat(target.c_str(), &info) == 0;
+  if (exists && !S_ISREG(info.st_mode)) {
+    // A device or a pipe: it cannot be replaced by a rename.
+    if (kind == writer::stream) {
+      return true;  // written directly
+    }
+    temporary_ = (std::filesystem::temp_directory_path() / "clothlab-XXXXXX").string();
+    copy_into_target_ = true;
+  } else {
+    const std::filesystem::path path(target);
+    const std::string name = path.filename().string();
+    temporary_ = (path.parent_path() / ("." + name + ".XXXXXX")).string();
+  }
+  if (create_temporary(temporary_))
+    return true;
+  const int saved = errno;
+  temporary_.clear();
+  if (exists && (saved == EACCES || saved == EPERM || saved == EROFS) && kind == writer::stream) {
+    return true;  // the folder takes no new file but the file may be writable: write directly
+  }
+  error = std::strerror(saved);
+  return false;
+}
+
+bool output_file::commit(std::string& error) {
+  if (temporary_.empty())
+    return true;  // written directly, already closed by the caller
+  bool ok = true;
+  if (copy_into_target_) {
+    file_handle in(std::fopen(temporary_.c_str(), "rb"), &std::fclose);
+    file_handle out(std::fopen(target_.c_str(), "wb"), &std::fclose);
+    ok = in && out;
+    char buffer[1 << 16];
+    while (ok) {
+      const std::size_t n = std::fread(buffer, 1, sizeof buffer, in.get());
+      if (n == 0)
+        break;
+      ok = std::fwrite(buffer, 1, n, out.get()) == n;
+    }
+    ok = ok && std::ferror(in.get()) == 0;
+    if (out) {
+      ok = std::fflush(out.get()) == 0 && ok;
+      ok = std::fclose(out.release()) == 0 && ok;
+    }
+    if (!ok)
+      error = std::strerror(errno);
+  } else if (std::rename(temporary_.c_str(), target_.c_str()) != 0) {
+    ok = false;
+    error = std::strerror(errno);
+  } else {
+    temporary_.clear();  // renamed: nothing left to remove
+  }
+  discard();
+  return ok;
+}
+
+void output_file::discard() {
+  if (!temporary_.empty())
+    ::unlink(temporary_.c_str());
+  temporary_.clear();
 }
 
 }  // namespace clothlab

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -50,8 +51,7 @@ cloth_parameters cell_parameters(const cloth_parameters& base, const sweep_cell&
 template <class Stage>
 void run_stage(Stage& stage, double simulated_time, sweep_cell& cell,
                const std::atomic<bool>* cancel) {
-  const long steps =
-      std::max(1L, static_cast<long>(std::ceil(simulated_time / cell.time_step - 1e-9)));
+  const long steps = sweep_steps_per_cell(simulated_time, cell.time_step);
   cell.time_step_limit = estimate_stability(stage).time_step_limit;
   for (long s = 1; s <= steps; ++s) {
     if (cancel != nullptr && s % 16 == 0 && cancel->load())
@@ -114,6 +114,16 @@ void run_cells(const sweep_settings& settings, std::vector<sweep_cell>& cells,
 }
 
 }  // namespace
+
+long sweep_steps_per_cell(double simulated_time, double time_step) {
+  // (the 1e-9 keeps 2 s / 0.01 s at 200 steps where rounding gives 200.00000000000003)
+  const double steps = std::ceil(simulated_time / time_step - 1e-9);
+  if (!(steps >= 1.0))
+    return 1;
+  if (!(steps < static_cast<double>(std::numeric_limits<long>::max())))
+    return std::numeric_limits<long>::max();  // also for an infinite count (dt = 1e-320)
+  return static_cast<long>(steps);
+}
 
 std::vector<sweep_cell> make_sweep_cells(const sweep_settings& settings) {
   if (settings.time_steps.empty())

@@ -64,6 +64,11 @@ std::vector<sweep_cell> make_sweep_cells(const sweep_settings& settings);
 std::vector<sweep_cell> run_sweep(const sweep_settings& settings,
                                   sweep_progress* progress = nullptr);
 
+// The steps a cell of time step dt runs: ceil(simulated_time / dt), at least 1. Computed in
+// double and saturated at LONG_MAX, so that no dt (1e-300 included) overflows the count; the
+// command line refuses sweeps past its bounds before they start (docs/limits.md).
+long sweep_steps_per_cell(double simulated_time, double time_step);
+
 // Runs one cell (dt, K or N already set) and fills computed, diverged and step.
 void run_sweep_cell(const sweep_settings& settings, sweep_cell& cell,
                     const std::atomic<bool>* cancel = nullptr);

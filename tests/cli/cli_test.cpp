@@ -3,12 +3,17 @@
 // (exit 3), unwritable files (exit 1) and the OBJ. Each run happens in its own empty directory.
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <pty.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -64,10 +69,19 @@ class cli : public ::testing::Test {
 
   fs::path work() const { return root_ / "work"; }
 
+  long file_size_limit = 0;  // bytes: RLIMIT_FSIZE of the runs, 0 for none
+
   // without_display: DISPLAY and WAYLAND_DISPLAY removed from clothlab's environment.
   run_result run(const arguments& args, bool without_display = false) const {
-    const fs::path out_path = root_ / "stdout.txt";
-    const fs::path err_path = root_ / "stderr.txt";
+    return finish(start(args, without_display));
+  }
+
+  // Starts clothlab without waiting for it; `name` tells its standard output and error files
+  // apart from those of other runs at the same time.
+  pid_t start(const arguments& args, bool without_display = false,
+              const std::string& name = "") const {
+    const fs::path out_path = root_ / ("stdout" + name + ".txt");
+    const fs::path err_path = root_ / ("stderr" + name + ".txt");
     std::vector<char*> argv;
     std::string program = CLOTHLAB_EXECUTABLE;
     argv.push_back(program.data());
@@ -89,10 +103,25 @@ class cli : public ::testing::Test {
         unsetenv("DISPLAY");
         unsetenv("WAYLAND_DISPLAY");
       }
+      if (file_size_limit > 0) {
+        // A full disk, simulated: writes past the limit fail with EFBIG (SIGXFSZ ignored).
+        signal(SIGXFSZ, SIG_IGN);
+        const rlimit limit{static_cast<rlim_t>(file_size_limit),
+                           static_cast<rlim_t>(file_size_limit)};
+        if (setrlimit(RLIMIT_FSIZE, &limit) != 0)
+          _exit(126);
+      }
       alarm(60);  // a run that hangs is killed (SIGALRM: exit code 128 + 14)
       execv(argv[0], argv.data());
       _exit(127);
     }
+    return child;
+  }
+
+  // Waits for a run started by start().
+  run_result finish(pid_t child, const std::string& name = "") const {
+    const fs::path out_path = root_ / ("stdout" + name + ".txt");
+    const fs::path err_path = root_ / ("stderr" + name + ".txt");
     run_result result;
     int status = 0;
     if (child < 0 || waitpid(child, &status, 0) != child) {
@@ -561,7 +590,33 @@ INSTANTIATE_TEST_SUITE_P(
         bad_usage{"SweepNOnTheSingleSpring",
                   {"--stage", "spring", "--sweep", "m.csv", "--sweep-N", "2,3"},
                   "--sweep-N"},
-        bad_usage{"ZeroSweepTime", {"--sweep", "m.csv", "--sweep-time", "0"}, "--sweep-time"}),
+        bad_usage{"ZeroSweepTime", {"--sweep", "m.csv", "--sweep-time", "0"}, "--sweep-time"},
+        // Issue 12: the bounds of docs/limits.md, each message naming the option.
+        bad_usage{"HugeMassD1", {"--stage", "cloth", "--mass", "1e308"}, "--mass 1e+308"},
+        bad_usage{"HugeTimeStepD2", {"--dt", "1e308"}, "--dt 1e+308"},
+        bad_usage{"TimeStepAboveOneSecond", {"--dt", "1.5"}, "--dt 1.5"},
+        bad_usage{"SubnormalTimeStepD9", {"--dt", "1e-320"}, "between 1e-09 and 1 s"},
+        bad_usage{"TimeStepOverflowingADouble", {"--dt", "1e999"}, "--dt"},
+        bad_usage{"HugeSizeD3", {"--size", "1.7976931348623157e308"}, "--size"},
+        bad_usage{"LargeSizeD4", {"--size", "1e300"}, "between 0.001 and 1000 m"},
+        bad_usage{"SubnormalSizeD4", {"--size", "1e-320"}, "--size"},
+        bad_usage{"HugeStiffness", {"--K-struct", "2e9"}, "--K-struct 2e+09"},
+        bad_usage{"HugeSpringStiffness", {"--K", "1e10"}, "--K 1e+10"},
+        bad_usage{"HugeGravity", {"--gravity", "1e4"}, "--gravity 10000"},
+        bad_usage{"HugeWindStrength", {"--wind-strength", "-1e7"}, "--wind-strength"},
+        bad_usage{"HugeWindDirection", {"--wind-dir", "1e300,0,0"}, "--wind-dir"},
+        bad_usage{"SubnormalWindDirectionD9", {"--wind-dir", "1e-320,0,0"}, "at least 1e-06"},
+        bad_usage{"GroundFarAway", {"--ground-z", "-1e4"}, "--ground-z -10000"},
+        bad_usage{"TooManySteps", {"--steps", "2000000000"}, "--steps"},
+        bad_usage{"HugeSizeInTheMiddleOfASweepD5",
+                  {"--stage", "spring", "--sweep", "m.csv", "--sweep-K", "1e-300:1e300:3"},
+                  "--sweep-K 1e+300"},
+        bad_usage{"SweepListValueOutOfRangeD5",
+                  {"--stage", "spring", "--sweep", "m.csv", "--sweep-dt", "0.01,5,0.02"},
+                  "--sweep-dt 5"},
+        bad_usage{"TinySweepTimeStepD6",
+                  {"--stage", "spring", "--sweep", "m.csv", "--sweep-dt", "1e-300"},
+                  "--sweep-dt 1e-300"}),
     [](const ::testing::TestParamInfo<bad_usage>& param_info) { return param_info.param.label; });
 
 // K = 1e6 and dt = 0.1 (w dt = 100, far above 2): the spring explodes. Exit 3, one stderr line
@@ -711,4 +766,207 @@ TEST_F(cli, DampingTooStrongForAnyStageOfTheWindowIsRefused) {
   const run_result headless =
       run({"--headless", "--stage", "cloth", "--N", "4", "--steps", "2", "--mu", "300"});
   EXPECT_EQ(headless.exit_code, 0) << headless.err;
+}
+
+// A subnormal value is read as the number it is and then refused by the option's range, naming
+// the bound, whatever the option (D9): no option calls it "not a finite number".
+TEST_F(cli, SubnormalValuesAreRefusedByTheirRangeAlike) {
+  for (const arguments& args : {arguments{"--dt", "1e-320"}, arguments{"--size", "1e-320"},
+                                arguments{"--mass", "1e-320"}}) {
+    const run_result result = run(headless_run(args));
+    EXPECT_EQ(result.exit_code, 2) << join(args);
+    EXPECT_NE(result.err.find("must be between"), std::string::npos) << result.err;
+  }
+  const run_result ground = run(headless_run({"--ground-z", "1e-320"}));
+  EXPECT_EQ(ground.exit_code, 0) << "1e-320 is inside --ground-z's range: " << ground.err;
+}
+
+// D6: sweeps that would run without end are refused with the number of steps and the limit,
+// and nothing is written.
+TEST_F(cli, SweepAskingForTooManyStepsIsRefusedWithTheCount) {
+  const run_result per_cell =
+      run({"--headless", "--stage", "spring", "--sweep", "m.csv", "--sweep-dt", "1e-9"});
+  EXPECT_EQ(per_cell.exit_code, 2) << per_cell.err;
+  EXPECT_EQ(count_lines(per_cell.err), 1u) << per_cell.err;
+  EXPECT_NE(per_cell.err.find("--sweep-dt"), std::string::npos) << per_cell.err;
+  EXPECT_NE(per_cell.err.find("2e+09 steps"), std::string::npos) << per_cell.err;
+  EXPECT_NE(per_cell.err.find("10000000"), std::string::npos) << per_cell.err;
+  // 200 x 200 cells of 1e6 steps each: 4e10 steps in all.
+  const run_result total = run({"--headless", "--stage", "spring", "--sweep", "m.csv", "--sweep-dt",
+                                "1e-6:2e-6:200", "--sweep-K", "1:2:200", "--sweep-time", "1"});
+  EXPECT_EQ(total.exit_code, 2) << total.err;
+  EXPECT_NE(total.err.find("limit 1e+09"), std::string::npos) << total.err;
+  EXPECT_TRUE(fs::is_empty(work()));
+}
+
+// D7: a device that takes no data. Each output reports the failure (exit 1, naming the file)
+// instead of exit 0.
+TEST_F(cli, EveryOutputToAFullDeviceExitsOne) {
+  const std::vector<arguments> cases = {
+      {"--N", "3", "--steps", "1", "--csv", "/dev/full"},
+      {"--N", "3", "--steps", "1", "--energy-csv", "/dev/full"},
+      {"--N", "3", "--steps", "1", "--obj", "/dev/full"},
+      {"--N", "3", "--steps", "1", "--png", "/dev/full", "--width", "32", "--height", "32"},
+      {"--stage", "spring", "--sweep", "/dev/full", "--sweep-dt", "0.01", "--sweep-K", "1"}};
+  for (arguments args : cases) {
+    args.insert(args.begin(), "--headless");
+    const run_result result = run(args);
+    EXPECT_EQ(result.exit_code, 1) << join(args) << "\n" << result.err;
+    EXPECT_NE(result.err.find("/dev/full"), std::string::npos) << result.err;
+  }
+}
+
+// D8: a disk that fills up during the run (a file-size limit): exit 1 naming the file, no
+// partial file, and a file of the same name from before left as it was.
+TEST_F(cli, FailedWriteLeavesNoPartialFileAndTheOldOneIntact) {
+  const struct {
+    const char* option;
+    const char* name;
+    arguments more;
+  } cases[] = {
+      {"--csv", "states.csv", {"--N", "10", "--steps", "200"}},
+      {"--energy-csv", "energy.csv", {"--N", "10", "--steps", "20000"}},
+      {"--obj", "cloth.obj", {"--N", "60", "--steps", "2"}},
+      {"--png", "cloth.png", {"--N", "10", "--steps", "2", "--width", "400", "--height", "300"}}};
+  file_size_limit = 4096;
+  for (const auto& c : cases) {
+    std::ofstream(work() / c.name) << "old\n";
+    arguments args = {"--headless", c.option, c.name};
+    args.insert(args.end(), c.more.begin(), c.more.end());
+    const run_result result = run(args);
+    EXPECT_EQ(result.exit_code, 1) << join(args) << "\n" << result.err;
+    EXPECT_NE(result.err.find(std::string(c.option) + " " + c.name), std::string::npos)
+        << result.err;
+    EXPECT_EQ(read_file(work() / c.name), "old\n") << c.name;
+    for (const fs::directory_entry& entry : fs::directory_iterator(work()))
+      EXPECT_NE(entry.path().filename().string().front(), '.') << "left " << entry.path();
+    fs::remove(work() / c.name);
+  }
+}
+
+// The files of a headless run appear whole or not at all: while it runs they are hidden
+// temporary files, renamed into place at the end.
+TEST_F(cli, FilesAppearOnlyWhenWhole) {
+  const pid_t child = start({"--headless", "--N", "30", "--steps", "1000000000", "--csv", "s.csv"});
+  bool temporary_seen = false;
+  for (int i = 0; i < 500 && !temporary_seen; ++i) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(work()))
+      temporary_seen = temporary_seen || entry.path().filename().string().rfind(".s.csv.", 0) == 0;
+    usleep(10000);
+  }
+  EXPECT_TRUE(temporary_seen);
+  EXPECT_FALSE(fs::exists(work() / "s.csv")) << "the CSV appeared before the run ended";
+  kill(child, SIGTERM);
+  const run_result result = finish(child);
+  EXPECT_EQ(result.exit_code, 143) << result.err;
+  EXPECT_TRUE(fs::exists(work() / "s.csv"));
+}
+
+// D10: SIGINT, SIGTERM and SIGHUP during a run end it after a whole step: exit 128 + signal,
+// one line naming the signal, and a CSV of whole lines and whole steps.
+class cli_signals : public cli, public ::testing::WithParamInterface<int> {};
+
+TEST_P(cli_signals, StopTheRunWithWholeLines) {
+  const int signal_number = GetParam();
+  const long particles = 30 * 30;
+  const pid_t child = start({"--headless", "--N", "30", "--steps", "1000000000", "--csv", "s.csv"});
+  // Wait until the run has written something (its temporary file holds more than 200 kB).
+  bool written = false;
+  for (int i = 0; i < 1000 && !written; ++i) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(work()))
+      written = written || (entry.is_regular_file() && entry.file_size() > 200000);
+    usleep(10000);
+  }
+  ASSERT_TRUE(written);
+  kill(child, signal_number);
+  const run_result result = finish(child);
+  EXPECT_EQ(result.exit_code, 128 + signal_number) << result.err;
+  EXPECT_EQ(count_lines(result.err), 1u) << result.err;
+  EXPECT_NE(result.err.find("interrupted"), std::string::npos) << result.err;
+  const std::string text = read_file(work() / "s.csv");
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n') << "the last line is cut";
+  const csv_file csv = read_csv(work() / "s.csv");
+  EXPECT_EQ(csv.header, csv_header);
+  const std::vector<long> steps = written_steps(csv, particles);
+  ASSERT_GE(steps.size(), 2u);
+  EXPECT_NE(result.err.find("after step " + std::to_string(steps.back())), std::string::npos)
+      << result.err;
+  for (const fs::directory_entry& entry : fs::directory_iterator(work()))
+    EXPECT_NE(entry.path().filename().string().front(), '.') << "left " << entry.path();
+}
+
+INSTANTIATE_TEST_SUITE_P(InterruptSignals, cli_signals, ::testing::Values(SIGINT, SIGTERM, SIGHUP),
+                         [](const ::testing::TestParamInfo<int>& param_info) {
+                           return std::string(param_info.param == SIGINT    ? "SIGINT"
+                                              : param_info.param == SIGTERM ? "SIGTERM"
+                                                                            : "SIGHUP");
+                         });
+
+// D11: two runs writing the same CSV at once. Each writes its own temporary file and renames it
+// into place: the CSV is the whole output of one of them, not a mixture.
+TEST_F(cli, TwoRunsWritingOneFileLeaveOneWholeOutput) {
+  const arguments a = {"--headless", "--stage", "spring", "--K", "10", "--steps", "20000"};
+  const arguments b = {"--headless", "--stage", "spring", "--K", "30", "--steps", "20000"};
+  auto with_csv = [](arguments args, const char* name) {
+    args.insert(args.end(), {"--csv", name});
+    return args;
+  };
+  ASSERT_EQ(run(with_csv(a, "a.csv")).exit_code, 0);
+  ASSERT_EQ(run(with_csv(b, "b.csv")).exit_code, 0);
+  const std::string alone_a = read_file(work() / "a.csv");
+  const std::string alone_b = read_file(work() / "b.csv");
+  ASSERT_NE(alone_a, alone_b);
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const pid_t first = start(with_csv(a, "same.csv"), false, "a");
+    const pid_t second = start(with_csv(b, "same.csv"), false, "b");
+    EXPECT_EQ(finish(first, "a").exit_code, 0);
+    EXPECT_EQ(finish(second, "b").exit_code, 0);
+    const std::string together = read_file(work() / "same.csv");
+    EXPECT_TRUE(together == alone_a || together == alone_b)
+        << "a mixture of " << together.size() << " bytes";
+  }
+}
+
+// Progress: on a terminal a line at most every second; nothing when standard error is a file
+// (every other test).
+TEST_F(cli, ProgressIsShownOnATerminalOnly) {
+  int terminal = -1;
+  const pid_t child = forkpty(&terminal, nullptr, nullptr, nullptr);
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::string program = CLOTHLAB_EXECUTABLE;
+    if (chdir(work().c_str()) != 0)
+      _exit(126);
+    execl(program.c_str(), program.c_str(), "--headless", "--N", "30", "--steps", "1000000000",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::string seen;
+  const auto start_time = std::chrono::steady_clock::now();
+  bool interrupted = false;
+  for (;;) {
+    pollfd ready{terminal, POLLIN, 0};
+    if (poll(&ready, 1, 100) > 0) {
+      char buffer[512];
+      const ssize_t n = read(terminal, buffer, sizeof buffer);
+      if (n <= 0)
+        break;  // the run ended and closed the terminal
+      seen.append(buffer, static_cast<std::size_t>(n));
+    }
+    if (!interrupted && std::chrono::steady_clock::now() - start_time > std::chrono::seconds(3)) {
+      kill(child, SIGINT);
+      interrupted = true;
+    }
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << status << "\n" << seen;
+  EXPECT_NE(seen.find("\rclothlab: step "), std::string::npos) << seen;
+  EXPECT_NE(seen.find(" of 1000000000 ("), std::string::npos) << seen;
+  EXPECT_LE(std::count(seen.begin(), seen.end(), '\r'), 12) << "more than one line a second";
+
+  const run_result plain = run({"--headless", "--N", "30", "--steps", "3000"});
+  EXPECT_EQ(plain.exit_code, 0);
+  EXPECT_TRUE(plain.err.empty()) << plain.err;
 }
