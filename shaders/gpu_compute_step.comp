@@ -11,6 +11,11 @@ layout(std430, binding = 1) readonly buffer velocity_in { vec4 velocity[]; };
 layout(std430, binding = 2) readonly buffer normal_in { vec4 normal[]; };
 layout(std430, binding = 3) writeonly buffer position_out { vec4 new_position[]; };
 layout(std430, binding = 4) writeonly buffer velocity_out { vec4 new_velocity[]; };
+// The divergence check: step_index's count grows by one for each particle whose new state is
+// not finite or faster than speed_bound (speed_bound 0: no check).
+layout(std430, binding = 5) buffer diverged_count { uint diverged[]; };
+uniform float speed_bound;  // m/s
+uniform int step_index;     // the step's place in the batch
 
 uniform int grid_size;     // N
 uniform vec3 stiffness;    // K (N/m) of the structural, shear and bending springs
@@ -88,4 +93,9 @@ void main() {
   }
   new_position[i] = vec4(p_new, 0.0);
   new_velocity[i] = vec4(v_new, 0.0);
+  if (speed_bound > 0.0) {
+    bool finite = !any(isnan(p_new)) && !any(isinf(p_new)) && !any(isnan(v_new)) &&
+                  !any(isinf(v_new));
+    if (!finite || length(v_new) > speed_bound) atomicAdd(diverged[step_index], 1u);
+  }
 }

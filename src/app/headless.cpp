@@ -16,10 +16,12 @@
 #include <thread>
 #include <vector>
 
+#include "cloth_parallel.hpp"
 #include "energy.hpp"
 #include "export.hpp"
 #include "gl_context.hpp"
 #include "gpu_cloth.hpp"
+#include "gpu_cloth_compute.hpp"
 #include "renderer.hpp"
 #include "stability.hpp"
 #include "sweep.hpp"
@@ -357,31 +359,43 @@ int run_cpu(const options& o, Stage& stage, run_outputs& out, double time_step) 
   return 0;
 }
 
-// The GPU path (cloth only): the state lives in float textures; it is read back into the CPU
-// cloth after every step for the divergence check and the CSVs, and drawn from the textures.
-int run_gpu(const options& o, spring_mesh& cloth, run_outputs& out) {
-  std::string error;
-  gpu_cloth gpu;
-  if (!gpu.load(cloth, error)) {
-    std::fprintf(stderr, "clothlab: %s\n", error.c_str());
-    return exit_failure;
-  }
+// The cloth's other paths (cpu-parallel, gpu, gpu-compute): the state stays on the path and is
+// read back into the CPU cloth only at the steps whose rows are written (--csv, --energy-csv:
+// every --csv-every steps) and at the last one. Every step is checked for divergence on the
+// path itself (path.run), so that exit 3 still names the step. Batches end at those steps, and
+// at least every max_batch steps for the progress line and the stop signals.
+template <class Path>
+int run_batched(const options& o, spring_mesh& cloth, Path& path, run_outputs& out,
+                const char* path_name) {
+  constexpr long max_batch = 256;
   const double dt = cloth.parameters.dynamics.time_step;
+  const double speed_bound = divergence_speed_bound(cloth);
+  const bool rows = !o.csv_path.empty() || !o.energy_csv_path.empty();
   progress_line progress("step", o.steps, clock_stride(cloth.particles().size()));
-  for (long s = 0; s <= o.steps; ++s) {
-    if (s > 0) {
-      gpu.step(cloth.parameters);
-      gpu.read_state(cloth);
+  if (const int status = after_step(o, cloth, 0, dt, out, progress); status != 0)
+    return status;
+  for (long s = 0; s < o.steps;) {
+    long next = std::min(o.steps, s + max_batch);
+    if (rows)
+      next = std::min(next, (s / o.csv_every + 1) * o.csv_every);
+    const int diverged_after = path.run(cloth.parameters, static_cast<int>(next - s), speed_bound);
+    if (diverged_after != 0) {
+      const long step = s + diverged_after;
+      progress.clear();
+      std::fprintf(stderr,
+                   "clothlab: the cloth simulation diverged at step %ld (t = %g s): a particle's "
+                   "position or velocity is not finite, or its speed exceeds %g m/s (checked on "
+                   "the %s path)\n",
+                   step, double(step) * dt, speed_bound, path_name);
+      return exit_diverged;
     }
+    s = next;
+    if (s == o.steps || (rows && s % o.csv_every == 0))
+      path.read_state(cloth);
     if (const int status = after_step(o, cloth, s, dt, out, progress); status != 0)
       return status;
   }
-  if (o.png_path.empty())
-    return 0;
-  return write_png(o, out, [&](renderer& r, const camera& view) {
-    r.draw_from_textures(gpu.position_texture(), gpu.normal_texture(), cloth, view,
-                         render_settings{}, o.width, o.height);
-  });
+  return 0;
 }
 
 // n values spaced evenly on a log scale from `from` to `to`.
@@ -591,25 +605,64 @@ int run_stage(const options& o, run_outputs& out) {
     }
     case stage_kind::cloth: {
       spring_mesh cloth(o.cloth);
-      const bool on_gpu = o.backend == backend_kind::gpu;
-      // (the GPU run writes its PNG from its textures)
-      const int status =
-          on_gpu ? run_gpu(o, cloth, out) : run_cpu(o, cloth, out, o.cloth.dynamics.time_step);
+      std::string error;
+      int status = 0;
+      bool drawn = false;  // the fragment path draws its PNG from its own textures
+      switch (o.backend) {
+        case backend_kind::cpu:
+          status = run_cpu(o, cloth, out, o.cloth.dynamics.time_step);
+          break;
+        case backend_kind::cpu_parallel: {
+          cloth_parallel path(o.threads);
+          path.load(cloth);
+          status = run_batched(o, cloth, path, out, "cpu-parallel");
+          break;
+        }
+        case backend_kind::gpu: {
+          gpu_cloth path;
+          if (!path.load(cloth, error)) {
+            std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+            return exit_failure;
+          }
+          status = run_batched(o, cloth, path, out, "gpu");
+          if (status == 0 && !o.png_path.empty()) {
+            drawn = true;
+            status = write_png(o, out, [&](renderer& r, const camera& view) {
+              r.draw_from_textures(path.position_texture(), path.normal_texture(), cloth, view,
+                                   render_settings{}, o.width, o.height);
+            });
+          }
+          break;
+        }
+        case backend_kind::gpu_compute: {
+          gpu_cloth_compute path;
+          if (!path.load(cloth, error)) {
+            std::fprintf(stderr, "clothlab: --backend gpu-compute: %s\n", error.c_str());
+            return exit_failure;
+          }
+          status = run_batched(o, cloth, path, out, "gpu-compute");
+          break;
+        }
+      }
       if (status != 0)
         return status;
       cloth.compute_normals();  // of the final positions
-      std::string error;
       if (!out.write_obj_file(cloth, error)) {
         std::fprintf(stderr, "clothlab: %s\n", error.c_str());
         return exit_failure;
       }
-      return !on_gpu && !o.png_path.empty() ? write_cpu_png(o, out, cloth) : 0;
+      return !drawn && !o.png_path.empty() ? write_cpu_png(o, out, cloth) : 0;
     }
   }
   return exit_failure;
 }
 
 }  // namespace
+
+bool needs_opengl(const options& o) {
+  return o.sweep_path.empty() && (o.backend == backend_kind::gpu ||
+                                  o.backend == backend_kind::gpu_compute || !o.png_path.empty());
+}
 
 int run_headless(const options& o) {
   install_stop_handlers();
@@ -626,13 +679,19 @@ int run_headless(const options& o) {
 
   // One off-screen context serves the GPU path and the PNG.
   std::unique_ptr<gl_context> context;
-  if (o.backend == backend_kind::gpu || !o.png_path.empty()) {
+  if (needs_opengl(o)) {
     context = create_offscreen_context(o.width, o.height, error);
     if (!context) {
       std::fprintf(stderr, "clothlab: no OpenGL context: %s\n", error.c_str());
       out.close(false, error);
       return exit_failure;
     }
+#if defined(CLOTHLAB_GL_EGL)
+    const char* through = "EGL";
+#else
+    const char* through = "OSMesa";
+#endif
+    std::printf("clothlab: OpenGL: %s, through %s\n", context->description().c_str(), through);
   }
 
   int status = run_stage(o, out);

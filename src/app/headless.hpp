@@ -7,5 +7,7 @@
 namespace clothlab {
 
 int run_headless(const options& o);
+// True when the run needs an off-screen OpenGL context (a GPU path or --png).
+bool needs_opengl(const options& o);
 
 }  // namespace clothlab

@@ -1,7 +1,9 @@
-// clothlab: the command line of shared/cli.md. With --headless it runs here, in an off-screen
-// OpenGL context when one is needed (--png, --backend gpu). Without it, it hands over to the
-// interactive window, clothlab-window, built beside it from the same sources with GLFW and GLEW
-// (one process cannot hold both the GLX and the OSMesa OpenGL libraries: see README).
+// clothlab: the command line of docs/cli.md. With --headless it runs here, in an off-screen
+// OpenGL context when one is needed (--png, --backend gpu or gpu-compute). Without it, it hands
+// over to the interactive window, clothlab-window, built beside it from the same sources with
+// GLFW and GLEW (one process cannot hold both the GLX and the OSMesa OpenGL libraries: see
+// README). The same way, --gl chooses between this program (OSMesa) and clothlab-egl (EGL),
+// built from the same sources: --gl auto takes EGL only where a hardware GPU is there.
 #include <unistd.h>
 
 #include <cerrno>
@@ -11,22 +13,42 @@
 #include <string>
 #include <vector>
 
+#include "gl_context.hpp"
 #include "headless.hpp"
 #include "options.hpp"
 
 namespace {
 
-int open_window(int argc, char** argv) {
+// Replaces this process by the program `name` beside it, with the same arguments (and `extra`).
+int hand_over(const char* name, int argc, char** argv, const char* extra = nullptr) {
   std::error_code ec;
   const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const auto window = (ec ? std::filesystem::path(".") : self.parent_path()) / "clothlab-window";
+  const auto program = (ec ? std::filesystem::path(".") : self.parent_path()) / name;
   std::vector<char*> args(argv, argv + argc);
+  std::string extra_arguments = extra ? extra : "";
+  if (extra != nullptr) {
+    args.push_back(extra_arguments.data());
+  }
   args.push_back(nullptr);
-  ::execv(window.c_str(), args.data());
-  std::fprintf(stderr, "clothlab: cannot start the window program %s: %s\n", window.c_str(),
-               std::strerror(errno));
+  ::execv(program.c_str(), args.data());
+  std::fprintf(stderr, "clothlab: cannot start %s: %s\n", program.c_str(), std::strerror(errno));
   return 1;
 }
+
+#if !defined(CLOTHLAB_EGL_PROGRAM)
+// A GPU's device node: Linux's DRM render nodes, or NVIDIA's. Without one, EGL has only Mesa's
+// software renderer to offer, which OSMesa is too.
+bool gpu_device_node_present() {
+  std::error_code ec;
+  if (std::filesystem::exists("/dev/nvidia0", ec))
+    return true;
+  for (const auto& entry : std::filesystem::directory_iterator("/dev/dri", ec)) {
+    if (entry.path().filename().string().rfind("renderD", 0) == 0)
+      return true;
+  }
+  return false;
+}
+#endif
 
 }  // namespace
 
@@ -34,7 +56,20 @@ int main(int argc, char** argv) {
   const clothlab::parse_result result = clothlab::parse_command_line(argc, argv);
   if (!result.parsed)
     return result.exit_code;
-  if (!result.parsed->headless)
-    return open_window(argc, argv);
-  return clothlab::run_headless(*result.parsed);
+  const clothlab::options& o = *result.parsed;
+  if (!o.headless)
+    return hand_over("clothlab-window", argc, argv);
+  if (clothlab::needs_opengl(o)) {
+    using clothlab::gl_choice;
+#if defined(CLOTHLAB_EGL_PROGRAM)
+    if (o.gl == gl_choice::osmesa)
+      return hand_over("clothlab", argc, argv);
+    if (o.gl == gl_choice::automatic && !clothlab::egl_hardware_device_available())
+      return hand_over("clothlab", argc, argv, "--gl=osmesa");
+#else
+    if (o.gl == gl_choice::egl || (o.gl == gl_choice::automatic && gpu_device_node_present()))
+      return hand_over("clothlab-egl", argc, argv);
+#endif
+  }
+  return clothlab::run_headless(o);
 }

@@ -39,6 +39,9 @@ constexpr bounds ground_height_bounds{-1e3, 1e3, "m"};
 constexpr long max_steps = 1'000'000'000;                 // with dt <= 1 s: t <= 1e9 s
 constexpr bounds grid_list_bounds{1, max_grid_size, ""};  // --sweep-N, whole numbers
 constexpr int max_list_values = 200;
+constexpr bounds position_bounds{-1e3, 1e3, "m"};  // --drag target, --sphere centre
+constexpr bounds tear_strain_bounds{1e-6, 100.0, ""};
+constexpr int max_threads = 256;
 
 // A usage error: the option and what is wrong with its value.
 struct usage_error {
@@ -177,12 +180,19 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   // Values given on the command line; defaults come from the parameter structs.
   double dt = 0, stiffness = 0, damping = 0, mass = 0, gravity = 0;
   std::string stage = "cloth", backend = "cpu", integrator, pin_choice, ground_z, wind_dir;
-  std::string scaling, sweep_dt, sweep_k, sweep_n;
+  std::string scaling, sweep_dt, sweep_k, sweep_n, gl = "auto", drag, sphere;
+  double sphere_friction = o.cloth.sphere.friction, drag_stiffness = o.cloth.drag.stiffness;
+  double tear_strain = 0.0, self_collision = 0.0;
   const std::map<std::string, stage_kind> stages = {{"spring", stage_kind::spring},
                                                     {"coupled", stage_kind::coupled},
                                                     {"cloth", stage_kind::cloth}};
-  const std::map<std::string, backend_kind> backends = {{"cpu", backend_kind::cpu},
-                                                        {"gpu", backend_kind::gpu}};
+  const std::map<std::string, backend_kind> backends = {
+      {"cpu", backend_kind::cpu},
+      {"cpu-parallel", backend_kind::cpu_parallel},
+      {"gpu", backend_kind::gpu},
+      {"gpu-compute", backend_kind::gpu_compute}};
+  const std::map<std::string, gl_choice> gl_choices = {
+      {"auto", gl_choice::automatic}, {"egl", gl_choice::egl}, {"osmesa", gl_choice::osmesa}};
   std::vector<std::string> integrators;
   for (integrator_kind kind : all_integrators)
     integrators.emplace_back(integrator_name(kind));
@@ -208,8 +218,16 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   app.add_flag("--headless", o.headless, "Run without a window");
   app.add_option("--stage", stage, "spring | coupled | cloth (default cloth)")
       ->check(CLI::IsMember(stages));
-  app.add_option("--backend", backend, "cpu | gpu: the cloth's simulation path (default cpu)")
+  app.add_option("--backend", backend,
+                 "cpu (default, the lab's code) | cpu-parallel | gpu (fragment shaders) | "
+                 "gpu-compute: the cloth's simulation path")
       ->check(CLI::IsMember(backends));
+  app.add_option("--threads", o.threads, "cpu-parallel: threads (default: all cores)");
+  app.add_option("--gl", gl,
+                 "auto (default: EGL on a hardware GPU, else OSMesa) | egl | osmesa: the "
+                 "off-screen OpenGL of --backend gpu* and --png")
+      ->check(CLI::IsMember(gl_choices))
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   app.add_option(
          "--integrator", integrator,
          "semi-implicit (default) | explicit | verlet | rk4 | implicit (GPU: the first two)")
@@ -255,6 +273,16 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   app.add_option("--sweep-K", sweep_k, "Sweep stiffnesses (cloth: K_struct, ratios kept)");
   app.add_option("--sweep-N", sweep_n, "Sweep grid sizes (cloth) or chain lengths (coupled)");
   add_number("--sweep-time", o.sweep_time, "Simulated seconds per sweep cell (2)", false);
+  app.add_option("--drag", drag, "Pull particle (KU,KV) towards X,Y,Z: KU,KV:X,Y,Z (cloth)");
+  add_number("--drag-stiffness", drag_stiffness, "Drag spring K_d, N/m", false)
+      ->default_str(format_number(cloth.drag.stiffness));
+  app.add_option("--sphere", sphere, "A sphere to collide with: X,Y,Z,R (cloth)");
+  add_number("--sphere-friction", sphere_friction, "Sphere friction rate mu_s, 1/s", false)
+      ->default_str(format_number(cloth.sphere.friction));
+  add_number("--tear-strain", tear_strain,
+             "Tearing: a spring longer than (1 + E) L0 breaks (default: never)", false);
+  add_number("--self-collision", self_collision, "Self-collision thickness D, m (default: none)",
+             false);
 
   try {
     app.parse(argc, argv);
@@ -278,6 +306,48 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     }
     o.stage = stages.at(stage);
     o.backend = backends.at(backend);
+    o.gl = gl_choices.at(gl);
+    cloth.drag.stiffness = drag_stiffness;
+    cloth.sphere.friction = sphere_friction;
+    cloth.tear_strain = tear_strain;
+    cloth.self_collision_thickness = self_collision;
+    if (!drag.empty()) {
+      // KU,KV:X,Y,Z
+      const std::size_t colon = drag.find(':');
+      if (colon == std::string::npos)
+        throw usage_error{"--drag " + drag + ": expected KU,KV:X,Y,Z"};
+      const std::string grid = drag.substr(0, colon);
+      const std::size_t comma = grid.find(',');
+      const std::optional<double> ku = parse_number(grid.substr(0, comma));
+      const std::optional<double> kv =
+          comma == std::string::npos ? std::nullopt : parse_number(grid.substr(comma + 1));
+      if (!ku || !kv || *ku != std::floor(*ku) || *kv != std::floor(*kv)) {
+        throw usage_error{"--drag " + drag + ": KU,KV must be two whole numbers"};
+      }
+      if (*ku < 0 || *kv < 0 || *ku >= cloth.grid_size || *kv >= cloth.grid_size) {
+        throw usage_error{"--drag " + drag + ": particle (" + grid + ") is outside the " +
+                          std::to_string(cloth.grid_size) + " x " +
+                          std::to_string(cloth.grid_size) + " grid"};
+      }
+      cloth.drag.enabled = true;
+      cloth.drag.ku = static_cast<int>(*ku);
+      cloth.drag.kv = static_cast<int>(*kv);
+      cloth.drag.target = parse_vector("--drag", drag.substr(colon + 1));
+      for (int i = 0; i < 3; ++i)
+        require_within("--drag", cloth.drag.target[i], position_bounds);
+    }
+    if (!sphere.empty()) {
+      const std::size_t last = sphere.rfind(',');
+      if (last == std::string::npos)
+        throw usage_error{"--sphere " + sphere + ": expected X,Y,Z,R"};
+      cloth.sphere.enabled = true;
+      cloth.sphere.centre = parse_vector("--sphere", sphere.substr(0, last));
+      cloth.sphere.radius =
+          number_or_usage_error("--sphere", sphere.substr(last + 1), "expected X,Y,Z,R");
+      for (int i = 0; i < 3; ++i)
+        require_within("--sphere", cloth.sphere.centre[i], position_bounds);
+      require_within("--sphere", cloth.sphere.radius, size_bounds);
+    }
     if (!pin_choice.empty())
       cloth.pins = pins.at(pin_choice);
     // The options every stage shares go into all three parameter structs.
@@ -386,6 +456,20 @@ parse_result parse_command_line(int argc, const char* const* argv) {
             cloth.ground_friction,
             "mu_g dt = " + format_number(cloth.ground_friction * cloth.dynamics.time_step) +
                 " must be at most 1");
+    require_within("--drag-stiffness", cloth.drag.stiffness, stiffness_bounds);
+    require_finite("--sphere-friction", cloth.sphere.friction);
+    require(cloth.sphere.friction >= 0, "--sphere-friction", cloth.sphere.friction,
+            "must be at least 0");
+    require(cloth.sphere.friction * cloth.dynamics.time_step <= 1, "--sphere-friction",
+            cloth.sphere.friction,
+            "mu_s dt = " + format_number(cloth.sphere.friction * cloth.dynamics.time_step) +
+                " must be at most 1");
+    if (app.count("--tear-strain") > 0)
+      require_within("--tear-strain", cloth.tear_strain, tear_strain_bounds);
+    if (app.count("--self-collision") > 0)
+      require_within("--self-collision", cloth.self_collision_thickness, size_bounds);
+    require(o.threads >= 0 && o.threads <= max_threads, "--threads", o.threads,
+            "must be between 1 and " + std::to_string(max_threads) + " (0: all cores)");
     require(o.steps >= 0 && o.steps <= max_steps, "--steps", double(o.steps),
             "must be between 0 and " + format_number(double(max_steps)));
     require(o.csv_every >= 1, "--csv-every", double(o.csv_every), "must be at least 1");
@@ -407,15 +491,38 @@ parse_result parse_command_line(int argc, const char* const* argv) {
             "must be positive and at most 1000 s");
 
     // Combinations.
-    if (o.backend == backend_kind::gpu && o.stage != stage_kind::cloth) {
-      throw usage_error{
-          "--backend gpu: the GPU path simulates the cloth; use it with --stage cloth"};
+    if (o.backend != backend_kind::cpu && o.stage != stage_kind::cloth) {
+      throw usage_error{"--backend " + backend +
+                        ": this path simulates the cloth; use it with "
+                        "--stage cloth"};
     }
-    if (o.backend == backend_kind::gpu &&
+    if (o.backend != backend_kind::cpu &&
         o.cloth.dynamics.integrator != integrator_kind::semi_implicit &&
         o.cloth.dynamics.integrator != integrator_kind::explicit_euler) {
-      throw usage_error{"--integrator " + integrator +
-                        ": the GPU path runs semi-implicit or explicit only; use --backend cpu"};
+      throw usage_error{"--integrator " + integrator + ": the " + backend +
+                        " path runs semi-implicit or explicit only; use --backend cpu"};
+    }
+    if (o.backend != backend_kind::cpu) {
+      for (const auto* option : {"--tear-strain", "--self-collision"}) {
+        if (app.count(option) > 0) {
+          throw usage_error{std::string(option) + ": only the cpu path has it, not --backend " +
+                            backend};
+        }
+      }
+    }
+    if (app.count("--threads") > 0 && o.backend != backend_kind::cpu_parallel)
+      throw usage_error{"--threads: only with --backend cpu-parallel"};
+    if (o.stage != stage_kind::cloth) {
+      for (const auto* option : {"--drag", "--drag-stiffness", "--sphere", "--sphere-friction",
+                                 "--tear-strain", "--self-collision"}) {
+        if (app.count(option) > 0)
+          throw usage_error{std::string(option) + ": the cloth's; use it with --stage cloth"};
+      }
+    }
+    if (cloth.drag.enabled && cloth.pins == pin_mode::corners && cloth.drag.kv == 0 &&
+        (cloth.drag.ku == 0 || cloth.drag.ku == cloth.grid_size - 1)) {
+      throw usage_error{"--drag " + drag + ": particle (" + std::to_string(cloth.drag.ku) +
+                        ",0) is pinned (--pins corners): a pinned particle cannot be dragged"};
     }
     if (!o.sweep_path.empty()) {
       if (!o.sweep_stiffnesses.empty() && !o.sweep_grid_sizes.empty()) {
@@ -425,8 +532,9 @@ parse_result parse_command_line(int argc, const char* const* argv) {
         throw usage_error{"--sweep-N " + sweep_n +
                           ": the single spring has no size; use --stage coupled or cloth"};
       }
-      if (o.backend == backend_kind::gpu) {
-        throw usage_error{"--sweep: the stability map runs on the CPU; drop --backend gpu"};
+      if (o.backend != backend_kind::cpu) {
+        throw usage_error{"--sweep: the stability map runs on the cpu path; drop --backend " +
+                          backend};
       }
       for (const auto* option : {"--csv", "--obj", "--png", "--energy-csv"}) {
         if (app.count(option) > 0) {
@@ -443,6 +551,13 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       throw usage_error{"--obj " + o.obj_path +
                         ": the OBJ is the cloth's; use it with --stage cloth"};
     }
+    if (!o.headless &&
+        (o.backend == backend_kind::cpu_parallel || o.backend == backend_kind::gpu_compute)) {
+      throw usage_error{"--backend " + backend +
+                        ": headless only; the window runs the cpu and gpu paths (key G)"};
+    }
+    if (!o.headless && app.count("--gl") > 0)
+      throw usage_error{"--gl: only with --headless (the window has its own context)"};
     if (!o.headless) {
       for (const auto* option :
            {"--csv", "--csv-every", "--obj", "--png", "--steps", "--energy-csv", "--sweep"}) {

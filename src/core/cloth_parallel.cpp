@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <stdexcept>
 
@@ -372,6 +373,30 @@ void cloth_parallel::integrate(const cloth_parameters& p) {
       vy[k] = below ? uy * ground_factor : uy;
     }
   }
+}
+
+int cloth_parallel::run(const cloth_parameters& p, int count, double speed_bound) {
+  for (int s = 1; s <= count; ++s) {
+    step(p);
+    if (speed_bound > 0.0 && diverged(speed_bound))
+      return s;
+  }
+  return 0;
+}
+
+bool cloth_parallel::diverged(double speed_bound) const {
+  const double bound_squared = speed_bound * speed_bound;
+  const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(x_.size());
+  int found = 0;
+#pragma omp parallel for simd schedule(static) reduction(| : found) num_threads(threads())
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const double speed_squared = vx_[k] * vx_[k] + vy_[k] * vy_[k] + vz_[k] * vz_[k];
+    // !(a <= b) is true for NaN as well.
+    const bool finite =
+        std::abs(x_[k]) <= DBL_MAX && std::abs(y_[k]) <= DBL_MAX && std::abs(z_[k]) <= DBL_MAX;
+    found |= static_cast<int>(!(speed_squared <= bound_squared) || !finite);
+  }
+  return found != 0;
 }
 
 void cloth_parallel::step(const cloth_parameters& given) {

@@ -37,6 +37,10 @@ class cloth_parallel {
   // One step of length p.dynamics.time_step (the resolution scaling of question 10 applied to
   // the loaded N). Throws std::invalid_argument when !supports(p).
   void step(const cloth_parameters& p);
+  // `count` steps; with speed_bound > 0 (m/s) each step is checked: returns the first step of
+  // the batch (1..count) after which a particle is not finite or faster than the bound (the run
+  // stops there), 0 when none.
+  int run(const cloth_parameters& p, int count, double speed_bound = 0.0);
   // Writes the positions and velocities into the cloth (loaded from it, or of the same N).
   void read_state(spring_mesh& cloth) const;
 
@@ -44,6 +48,7 @@ class cloth_parallel {
   int threads() const;  // the threads a pass uses
 
  private:
+  bool diverged(double speed_bound) const;  // a position or velocity not finite, or too fast
   void compute_normals();
   void compute_forces(const cloth_parameters& p);
   void integrate(const cloth_parameters& p);

@@ -250,11 +250,13 @@ divergence_status divergence_check(const coupled_springs& stage) {
       divergence_speed_bound(stage.parameters.dynamics.gravity, fall_height, initial_speed));
 }
 
-divergence_status divergence_check(const spring_mesh& stage) {
+double divergence_speed_bound(const spring_mesh& stage) {
   const double fall_height = stage.parameters.side_length + 1.0;  // the cloth starts at rest
-  return divergence_check(
-      stage.particles(),
-      divergence_speed_bound(stage.parameters.dynamics.gravity, fall_height, 0.0));
+  return divergence_speed_bound(stage.parameters.dynamics.gravity, fall_height, 0.0);
+}
+
+divergence_status divergence_check(const spring_mesh& stage) {
+  return divergence_check(stage.particles(), divergence_speed_bound(stage));
 }
 
 }  // namespace clothlab

@@ -94,5 +94,6 @@ double divergence_speed_bound(double gravity, double fall_height, double initial
 divergence_status divergence_check(const single_spring& stage);
 divergence_status divergence_check(const coupled_springs& stage);
 divergence_status divergence_check(const spring_mesh& stage);
+double divergence_speed_bound(const spring_mesh& stage);  // the bound the cloth's check uses
 
 }  // namespace clothlab

@@ -94,6 +94,18 @@ EGLDisplay open_display() {
 
 }  // namespace
 
+bool egl_hardware_device_available() {
+  const auto query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+      eglGetProcAddress("eglQueryDeviceStringEXT"));
+  for (EGLDeviceEXT device : devices_hardware_first()) {
+    const char* extensions =
+        query_device_string ? query_device_string(device, EGL_EXTENSIONS) : nullptr;
+    if (!has_extension(extensions, "EGL_MESA_device_software"))
+      return true;
+  }
+  return false;
+}
+
 std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std::string& error) {
   if (width < 1 || height < 1) {
     error = "off-screen buffer " + std::to_string(width) + "x" + std::to_string(height) +

@@ -23,4 +23,9 @@ class gl_context {
 // Returns null and sets error (a full sentence) when it cannot be made.
 std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std::string& error);
 
+#if defined(CLOTHLAB_GL_EGL)
+// True when EGL lists a hardware device (a GPU's driver), not only Mesa's software one.
+bool egl_hardware_device_available();
+#endif
+
 }  // namespace clothlab

@@ -1,5 +1,7 @@
 #include "gpu_cloth_compute.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 
 #include "gpu_cloth.hpp"
@@ -34,6 +36,10 @@ void gpu_cloth_compute::release() {
   glDeleteBuffers(2, position_.data());
   glDeleteBuffers(2, velocity_.data());
   glDeleteBuffers(1, &normal_);
+  if (diverged_ != 0)
+    glDeleteBuffers(1, &diverged_);
+  diverged_ = 0;
+  diverged_size_ = 0;
   position_ = {};
   velocity_ = {};
   normal_ = 0;
@@ -89,7 +95,7 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
   return true;
 }
 
-void gpu_cloth_compute::run(const cloth_parameters& given, int count) {
+int gpu_cloth_compute::run(const cloth_parameters& given, int count, double speed_bound) {
   if (!is_loaded())
     throw std::logic_error("gpu_cloth_compute::run called before a successful load");
   cloth_parameters resolved = given;
@@ -97,13 +103,30 @@ void gpu_cloth_compute::run(const cloth_parameters& given, int count) {
   const cloth_parameters p = effective_cloth_parameters(resolved);
   if (std::string error; !gpu_cloth::supports(p, error))
     throw std::invalid_argument("gpu_cloth_compute::run: " + error);
+  if (count < 1)
+    return 0;
   step_program_.use();
   set_step_uniforms(step_program_, p, grid_size_, rest_length_);
+  const bool check = speed_bound > 0.0;
+  glUniform1f(step_program_.uniform("speed_bound"),
+              check ? static_cast<float>(std::min(speed_bound, 1e30)) : 0.0f);
+  if (check) {
+    const std::vector<std::uint32_t> zeros(static_cast<std::size_t>(count), 0u);
+    if (diverged_ == 0)
+      glGenBuffers(1, &diverged_);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, diverged_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(zeros.size() * 4), zeros.data(),
+                 GL_DYNAMIC_READ);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    diverged_size_ = zeros.size();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, diverged_);
+  }
   normal_program_.use();
   glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
   for (int s = 0; s < count; ++s) {
     const int write = 1 - read_;
     step_program_.use();
+    glUniform1i(step_program_.uniform("step_index"), s);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, velocity_[read_]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
@@ -120,6 +143,19 @@ void gpu_cloth_compute::run(const cloth_parameters& given, int count) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   glUseProgram(0);
+  if (!check)
+    return 0;
+  std::vector<std::uint32_t> counts(static_cast<std::size_t>(count));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, diverged_);
+  glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(counts.size() * 4),
+                     counts.data());
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  for (int s = 0; s < count; ++s) {
+    if (counts[static_cast<std::size_t>(s)] != 0)
+      return s + 1;
+  }
+  return 0;
 }
 
 void gpu_cloth_compute::read_state(spring_mesh& cloth) const {

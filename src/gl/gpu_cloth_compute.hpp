@@ -33,8 +33,11 @@ class gpu_cloth_compute {
   // older than 4.3 or a shader is missing or does not compile.
   bool load(const spring_mesh& cloth, std::string& error);
   bool is_loaded() const { return grid_size_ != 0; }
-  // `count` steps (uniforms set once). Throws like gpu_cloth::step.
-  void run(const cloth_parameters& p, int count = 1);
+  // `count` steps (uniforms set once). With speed_bound > 0 (m/s) every step is checked on the
+  // GPU (a counter per step of the particles not finite or faster than the bound): returns the
+  // first step of the batch (1..count) after which one was, 0 when none. Throws like
+  // gpu_cloth::step.
+  int run(const cloth_parameters& p, int count = 1, double speed_bound = 0.0);
   // Copies the positions and velocities (widened to doubles) into cloth.particles().
   void read_state(spring_mesh& cloth) const;
   int grid_size() const { return grid_size_; }
@@ -50,6 +53,8 @@ class gpu_cloth_compute {
   std::array<GLuint, 2> position_{};
   std::array<GLuint, 2> velocity_{};
   GLuint normal_ = 0;
+  GLuint diverged_ = 0;  // one counter per step of a checked batch
+  std::size_t diverged_size_ = 0;
   mutable std::vector<float> readback_;
 };
 
