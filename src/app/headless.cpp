@@ -201,7 +201,11 @@ class run_outputs {
   bool write_obj_file(const spring_mesh& cloth, std::string& error) {
     if (o_.obj_path.empty())
       return true;
-    if (!write_obj(obj_file_.write_path(), cloth.grid_size(), cloth.particles(), cloth.normals())) {
+    const auto intact = [&cloth](int ku, int kv, bool upper) {
+      return cloth.triangle_intact(ku, kv, upper);
+    };
+    if (!write_obj(obj_file_.write_path(), cloth.grid_size(), cloth.particles(), cloth.normals(),
+                   intact)) {
       error = "--obj " + o_.obj_path + ": cannot write: " + std::strerror(errno);
       obj_file_.discard();
       return false;

@@ -61,7 +61,8 @@ void write_csv_step(std::FILE* out, long step, double time, const particle_syste
 }
 
 bool write_obj(const std::string& path, int n, const particle_system& particles,
-               std::span<const double> normals) {
+               std::span<const double> normals,
+               const std::function<bool(int ku, int kv, bool upper)>& drawn) {
   file_handle file(std::fopen(path.c_str(), "w"), &std::fclose);
   if (!file)
     return false;
@@ -96,8 +97,10 @@ bool write_obj(const std::string& path, int n, const particle_system& particles,
       const long b = a + 1;                        // (ku+1, kv)
       const long c = a + n + 1;                    // (ku+1, kv+1)
       const long d = a + n;                        // (ku, kv+1)
-      std::fprintf(out, "f %ld/%ld/%ld %ld/%ld/%ld %ld/%ld/%ld\n", a, a, a, b, b, b, c, c, c);
-      std::fprintf(out, "f %ld/%ld/%ld %ld/%ld/%ld %ld/%ld/%ld\n", a, a, a, c, c, c, d, d, d);
+      if (!drawn || drawn(ku, kv, false))
+        std::fprintf(out, "f %ld/%ld/%ld %ld/%ld/%ld %ld/%ld/%ld\n", a, a, a, b, b, b, c, c, c);
+      if (!drawn || drawn(ku, kv, true))
+        std::fprintf(out, "f %ld/%ld/%ld %ld/%ld/%ld %ld/%ld/%ld\n", a, a, a, c, c, c, d, d, d);
     }
   }
   const bool ok = std::ferror(out) == 0;

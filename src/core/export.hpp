@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <span>
 #include <string>
 
@@ -18,8 +19,12 @@ void write_csv_step(std::FILE* out, long step, double time, const particle_syste
 // The N x N cloth: positions, normals, texture coordinates (u = ku/(N-1), v = kv/(N-1)) and two
 // triangles per cell. A normal that is not a finite unit vector (a cell collapsed to a point)
 // is written as (0, 0, 1). Returns false (errno set) when the file cannot be written.
+// drawn(ku, kv, upper) says whether the lower triangle (ku, kv), (ku+1, kv), (ku+1, kv+1) or
+// the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1) of cell (ku, kv) is written (default: all;
+// a torn cloth leaves out the triangles that lost a spring, spring_mesh::triangle_intact).
 bool write_obj(const std::string& path, int n, const particle_system& particles,
-               std::span<const double> normals);
+               std::span<const double> normals,
+               const std::function<bool(int ku, int kv, bool upper)>& drawn = {});
 
 // True when the file is a PNG whose chunks run to an IEND chunk that ends the file: a PNG
 // writer that does not report a failed write (stb's) leaves a file that fails this.

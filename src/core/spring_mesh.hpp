@@ -67,6 +67,12 @@ class spring_mesh {
   // along its diagonal (ku, kv)-(ku+1, kv+1) into the lower triangle (ku, kv), (ku+1, kv),
   // (ku+1, kv+1) and the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1). 0 <= ku, kv < N - 1.
   bool triangle_intact(int ku, int kv, bool upper) const;
+  // Whether a spring joins s(ku, kv) to s(ku + du, kv + dv) (inside the grid, not torn).
+  bool spring_intact(int ku, int kv, int du, int dv) const {
+    const int n = grid_size_;
+    return ku + du >= 0 && ku + du < n && kv + dv >= 0 && kv + dv < n && du >= -2 && du <= 2 &&
+           dv >= -2 && dv <= 2 && spring_intact_[rest_length_slot(index(ku, kv, n), du, dv)] != 0;
+  }
   // L0 of the spring from particle k to the particle at (du, dv) from it (du, dv in [-2, 2]), m:
   // their distance in the initial configuration (0 where there is no such particle).
   double rest_length(std::size_t k, int du, int dv) const {

@@ -81,8 +81,11 @@ cloth_indices make_cloth_indices(const spring_mesh& cloth) {
   std::size_t first = indices.size();
   for (int kv = 0; kv + 1 < n; ++kv) {
     for (int ku = 0; ku + 1 < n; ++ku) {
-      indices.insert(indices.end(), {k(ku, kv), k(ku + 1, kv), k(ku + 1, kv + 1)});
-      indices.insert(indices.end(), {k(ku, kv), k(ku + 1, kv + 1), k(ku, kv + 1)});
+      // A torn cloth (tearing, an addition) leaves out the triangles that lost a spring.
+      if (cloth.triangle_intact(ku, kv, false))
+        indices.insert(indices.end(), {k(ku, kv), k(ku + 1, kv), k(ku + 1, kv + 1)});
+      if (cloth.triangle_intact(ku, kv, true))
+        indices.insert(indices.end(), {k(ku, kv), k(ku + 1, kv + 1), k(ku, kv + 1)});
     }
   }
   result.triangles = range_since(first);
@@ -91,11 +94,11 @@ cloth_indices make_cloth_indices(const spring_mesh& cloth) {
   first = indices.size();
   for (int kv = 0; kv < n; ++kv) {
     for (int ku = 0; ku < n; ++ku) {
-      if (ku + 1 < n)
+      if (cloth.spring_intact(ku, kv, 1, 0))
         indices.insert(indices.end(), {k(ku, kv), k(ku + 1, kv)});
-      if (kv + 1 < n)
+      if (cloth.spring_intact(ku, kv, 0, 1))
         indices.insert(indices.end(), {k(ku, kv), k(ku, kv + 1)});
-      if (ku + 1 < n && kv + 1 < n)
+      if (cloth.spring_intact(ku, kv, 1, 1))
         indices.insert(indices.end(), {k(ku, kv), k(ku + 1, kv + 1)});
     }
   }
