@@ -12,6 +12,7 @@ from reference_model import run
 B = sys.argv[1]
 TOLERANCE = 1e-12
 failures = 0
+checked = 0
 cases=[
  (['--stage','spring','--steps','300'], dict(stage='spring',steps=300)),
  (['--stage','spring','--steps','300','--integrator','explicit','--K','35','--mu','0.1','--mass','1.5','--gravity','3'], dict(stage='spring',steps=300,integ='explicit',K=35,mu=0.1,m=1.5,g0=3)),
@@ -19,13 +20,28 @@ cases=[
  (['--stage','cloth','--N','7','--steps','400','--wind-strength','15','--wind-dir','1,2,0.5','--ground-z','-0.4','--ground-friction','3'], dict(stage='cloth',steps=400,N=7,Kw=15,wdir=(1,2,0.5),ground=-0.4,mug=3)),
  (['--stage','cloth','--N','6','--steps','300','--integrator','explicit','--dt','0.0005','--pins','none','--ground-z','-0.05','--K-struct','800','--K-shear','300','--K-bend','50','--size','2'], dict(stage='cloth',steps=300,N=6,integ='explicit',dt=0.0005,pins=False,ground=-0.05,Ks=800,Ksh=300,Kb=50,S=2.0)),
 ]
+# The additions of the model (drag, sphere, self-collision, tearing), on the readable CPU path.
+cases += [
+ (['--stage','cloth','--N','7','--steps','400','--pins','none','--sphere','0,0,-0.3,0.25','--sphere-friction','3','--drag','6,6:0.6,0.6,0.3','--drag-stiffness','400'], dict(stage='cloth',steps=400,N=7,pins=False,sphere=(0,0,-0.3,0.25),mus=3.0,drag=(6,6,(0.6,0.6,0.3)),Kd=400.0)),
+ (['--stage','cloth','--N','8','--steps','300','--pins','none','--sphere','0,0,-0.2,0.15','--self-collision','0.12'], dict(stage='cloth',steps=300,N=8,pins=False,sphere=(0,0,-0.2,0.15),self_d=0.12)),
+ (['--stage','cloth','--N','6','--steps','300','--tear-strain','0.15','--drag','5,5:1.5,1.5,0.5','--drag-stiffness','20000'], dict(stage='cloth',steps=300,N=6,tear=0.15,drag=(5,5,(1.5,1.5,0.5)),Kd=20000.0)),
+]
+# The other paths on the same cloth cases: cpu-parallel in double precision (the same 1e-12),
+# the two GPU paths in single precision (a relative 1e-4: float rounding over hundreds of steps).
+PATHS = [('cpu', TOLERANCE)]
+if len(sys.argv) > 2 and sys.argv[2] == 'solution':
+    PATHS += [('cpu-parallel', TOLERANCE), ('gpu', 1e-4), ('gpu-compute', 1e-4)]
 if len(sys.argv) > 2:
     wanted = sys.argv[2]
     cases = [c for c in cases if (c[1]['stage'] == 'spring') == (wanted == 'spring')]
 workdir = tempfile.mkdtemp(prefix='clothlab-model-')
 path = os.path.join(workdir, 'c.csv')
-for args,kw in cases:
-    subprocess.run([B,'--headless','--csv',path]+args,check=True)
+for backend, tolerance in PATHS:
+  for args,kw in cases:
+    if backend != 'cpu' and (kw['stage'] != 'cloth' or '--tear-strain' in args or '--self-collision' in args):
+        continue  # the other paths run the cloth; tearing and self-collision are the cpu path's
+    run_args = [B,'--headless','--csv',path]+args+['--backend',backend]
+    subprocess.run(run_args,check=True,stdout=subprocess.DEVNULL)
     with open(path) as f:
         rows=list(csv.reader(f))[1:]
     ref=run(**kw)
@@ -36,10 +52,11 @@ for args,kw in cases:
         for a,b in zip(r[3:],e[3:]):
             a=float(a); total+=1; exact+= (a==b)
             worst=max(worst,abs(a-b)/max(1.0,abs(b)))
-    ok = worst <= TOLERANCE
+    ok = worst <= tolerance
     failures += not ok
-    print('ok  ' if ok else 'FAIL', ' '.join(args), f"max rel diff {worst:.3g}, bitwise equal {exact}/{total}")
+    checked += 1
+    print('ok  ' if ok else 'FAIL', f"[{backend}]", ' '.join(args), f"max rel diff {worst:.3g}, bitwise equal {exact}/{total}")
 os.remove(path)
 os.rmdir(workdir)
-print(f"{len(cases) - failures} passed, {failures} failed")
+print(f"{checked - failures} passed, {failures} failed")
 sys.exit(1 if failures else 0)
