@@ -31,9 +31,10 @@ sanitize() {
     ctest --output-on-failure --timeout 600 -j 2 "$@"
     return
   fi
-  # Every test. The window's GLX driver (swrast_dri, dlopen'ed by Mesa and unloaded at exit)
-  # leaves two 56-byte blocks that LeakSanitizer can neither symbolise nor so suppress: the
-  # window tests run without leak checking, every other check on.
+  # Every test. The window (GLX under Xvfb) leaves two 56-byte blocks allocated from a library
+  # that is unloaded before exit (the stack points past clothlab-window's end; presumably
+  # Mesa's DRI driver), which LeakSanitizer can neither symbolise nor so suppress: the window
+  # tests run without leak checking, every other check on.
   local status=0
   ctest --output-on-failure --timeout 600 -j 2 -LE window || status=$?
   ASAN_OPTIONS=${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0} \
