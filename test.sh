@@ -29,7 +29,19 @@ sanitize() {
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=86"
   export LSAN_OPTIONS="suppressions=$root/tests/sanitize/lsan.supp:print_suppressions=0:exitcode=86"
   cd "$root/build-sanitize"
-  ctest --output-on-failure --timeout 600 -j 2 "$@"
+  if [ $# -gt 0 ]; then
+    ctest --output-on-failure --timeout 600 -j 2 "$@"
+    return
+  fi
+  # Every test. The window (GLX under Xvfb) leaves two 56-byte blocks allocated from a library
+  # that is unloaded before exit (the stack points past clothlab-window's end; presumably
+  # Mesa's DRI driver), which LeakSanitizer can neither symbolise nor so suppress: the window
+  # tests run without leak checking, every other check on.
+  local status=0
+  ctest --output-on-failure --timeout 600 -j 2 -LE window || status=$?
+  ASAN_OPTIONS=${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0} \
+    ctest --output-on-failure --timeout 600 -j 2 -L window || status=$?
+  return $status
 }
 
 if [ "${1:-}" = "--sanitize" ]; then
