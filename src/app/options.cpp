@@ -190,6 +190,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   app.add_option("--sweep-K", sweep_k, "Sweep stiffnesses (cloth: K_struct, ratios kept)");
   app.add_option("--sweep-N", sweep_n, "Sweep grid sizes (cloth) or chain lengths (coupled)");
   app.add_option("--sweep-time", o.sweep_time, "Simulated seconds per sweep cell (2)");
+  app.add_option("--frames", o.frames, "Window: run COUNT frames, print the mean frame time, exit")
+      ->check(CLI::PositiveNumber);
 
   try {
     app.parse(argc, argv);

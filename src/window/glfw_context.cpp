@@ -103,6 +103,10 @@ void glfw_context::swap_buffers() {
   glfwSwapBuffers(window_);
 }
 
+void glfw_context::set_vsync(bool on) {
+  glfwSwapInterval(on ? 1 : 0);
+}
+
 void glfw_context::on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
   if (action != GLFW_PRESS)
     return;

@@ -45,6 +45,8 @@ class glfw_context final : public gl_context {
   // Sleeps until the next event (used while minimised, so that the loop does not spin).
   void wait_events();
   void swap_buffers();
+  // Swaps wait for the screen's refresh (true, the default) or not.
+  void set_vsync(bool on);
 
  private:
   explicit glfw_context(GLFWwindow* window);

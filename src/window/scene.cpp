@@ -298,6 +298,7 @@ void scene::count_step(double time_step) {
   run_status& status = current_status();
   ++status.step;
   status.time += time_step;
+  ++steps_taken_;
 }
 
 void scene::report_divergence(divergence_status check) {

@@ -99,6 +99,8 @@ class scene {
   const std::array<std::vector<float>, 4>& energy_history() const { return energy_history_; }
   double steps_per_second() const { return measured_steps_per_second_; }
   double frames_per_second() const { return measured_frames_per_second_; }
+  // Steps taken since the program started, every stage and path together (--frames reports it).
+  long steps_taken() const { return steps_taken_; }
 
   // Questions 11 and 12: the cloth's path. switch_cloth_backend carries the current state across
   // (CPU -> GPU: gpu_cloth::load; GPU -> CPU: gpu_cloth::read_state), so the cloth goes on from
@@ -182,6 +184,7 @@ class scene {
   double measured_frames_per_second_ = 0.0;
   double stepping_seconds_in_rate_window_ = 0.0;
   double measured_stepping_rate_ = 0.0;
+  long steps_taken_ = 0;
 
   // The GPU path (questions 11 and 12). While backend_ is gpu, gpu_ holds the cloth's state and
   // cloth_stage holds a copy read back once per frame, for the divergence check and the energy

@@ -158,6 +158,36 @@ void save_screenshot(stage_kind stage, int width, int height) {
   std::fflush(stdout);
 }
 
+// --frames COUNT: counts the frames and, after the last one, prints the mean frame time and the
+// steps per second over them.
+class frame_counter {
+ public:
+  frame_counter(long frames, double start_seconds, long start_steps)
+      : frames_(frames), start_seconds_(start_seconds), start_steps_(start_steps) {}
+
+  // Called after each frame's swap; true after the last frame (never when frames is 0).
+  bool frame_done(double now_seconds, long steps) {
+    if (frames_ <= 0 || ++done_ < frames_)
+      return false;
+    const double seconds = now_seconds - start_seconds_;
+    const double steps_per_second =
+        seconds > 0.0 ? static_cast<double>(steps - start_steps_) / seconds : 0.0;
+    std::printf(
+        "clothlab-window: %ld frames in %.2f s: mean frame time %.2f ms (%.1f frames/s), %.0f "
+        "steps/s\n",
+        done_, seconds, 1000.0 * seconds / static_cast<double>(done_),
+        static_cast<double>(done_) / seconds, steps_per_second);
+    std::fflush(stdout);
+    return true;
+  }
+
+ private:
+  long frames_;
+  double start_seconds_;
+  long start_steps_;
+  long done_ = 0;
+};
+
 void apply_actions(const user_actions& actions, scene& the_scene, bool& show_help,
                    glfw_context& context) {
   if (actions.select_stage)
@@ -212,6 +242,11 @@ int main(int argc, char** argv) {
   mouse_camera_control mouse;
   bool show_help = false;
   double previous_time = glfwGetTime();
+  // --frames COUNT: the window's speed, measured by a script; without vsync, so that it measures
+  // the program and not the screen's refresh rate.
+  frame_counter measured_run(start.frames, previous_time, the_scene.steps_taken());
+  if (start.frames > 0)
+    context->set_vsync(false);
 
   while (!context->should_close()) {
     // ---- 1. Poll: window events, keys, mouse ----
@@ -250,6 +285,8 @@ int main(int argc, char** argv) {
 
     // ---- 5. Swap ----
     context->swap_buffers();
+    if (measured_run.frame_done(glfwGetTime(), the_scene.steps_taken()))
+      break;
   }
   return 0;
 }

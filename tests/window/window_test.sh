@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
-#   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch
+#   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -32,6 +32,24 @@ if [ -z "${CLOTHLAB_WINDOW_TEST_INSIDE_XVFB:-}" ]; then
     status=$?
   [ "$status" -eq 124 ] && fail "timed out after 200 s"
   exit "$status"
+fi
+
+# --frames COUNT: the window runs COUNT frames, prints the mean frame time and the steps per
+# second, and exits 0 by itself (no key needed).
+if [ "$scenario" = frames ]; then
+  status=0
+  "$program" --frames 0 >window.log 2>&1 || status=$?
+  [ "$status" -eq 2 ] || fail "--frames 0 was accepted (exit $status, expected 2)"
+  status=0
+  timeout 120 "$program" --frames 40 >window.log 2>&1 || status=$?
+  [ "$status" -eq 0 ] || fail "--frames 40 exited with status $status (expected 0)"
+  line=$(grep -E "^clothlab-window: 40 frames in [0-9.]+ s: mean frame time [0-9.]+ ms \([0-9.]+ frames/s\), [0-9]+ steps/s$" window.log) ||
+    fail "--frames 40 printed no line 'N frames in T s: mean frame time ... ms (... frames/s), ... steps/s'"
+  echo "window test: $line"
+  steps=$(echo "$line" | sed -E 's/.* ([0-9]+) steps\/s$/\1/')
+  [ "$steps" -gt 0 ] || fail "the cloth took no steps during --frames 40"
+  echo "window test ($scenario): PASS"
+  exit 0
 fi
 
 arguments=()
@@ -159,7 +177,7 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence or gpu_switch)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch or frames)"
     ;;
 esac
 
