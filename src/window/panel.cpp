@@ -7,7 +7,9 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "stability.hpp"  // the core's: step-size limits and divergence (question 4)
 
@@ -17,6 +19,162 @@ namespace {
 const ImVec4 warning_red = {1.0f, 0.35f, 0.3f, 1.0f};
 const ImVec4 caution_yellow = {1.0f, 0.85f, 0.3f, 1.0f};
 const ImVec4 quiet_green = {0.5f, 0.9f, 0.5f, 1.0f};
+
+// The top of the dt slider this frame, in screen units (every stage has one): the layout log
+// below checks that it does not move when the status changes.
+float time_step_slider_y = 0.0f;
+
+// Text broken into lines at spaces only (a number is never cut), in exactly `lines` lines of the
+// panel, so that nothing below moves when the text changes length or appears. What does not fit
+// ends in "..." and the whole text shows in a tooltip under the mouse.
+enum class text_style { plain, disabled, coloured };
+void fixed_lines(const std::string& text, int lines, text_style style = text_style::plain,
+                 const ImVec4& colour = {}) {
+  const float width = std::max(ImGui::GetContentRegionAvail().x, 1.0f);
+  const auto fits = [&](const std::string& line) {
+    return ImGui::CalcTextSize(line.c_str()).x <= width;
+  };
+  std::vector<std::string> shown;
+  std::string line;
+  bool cut = false;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos)
+      end = text.size();
+    const std::string word = text.substr(start, end - start);
+    start = end + 1;
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (line.empty() || fits(longer)) {
+      line = longer;
+      continue;
+    }
+    shown.push_back(line);
+    line = word;
+    if (static_cast<int>(shown.size()) == lines) {
+      cut = true;
+      break;
+    }
+  }
+  if (!cut && !line.empty())
+    shown.push_back(line);
+  if (static_cast<int>(shown.size()) > lines) {
+    shown.resize(static_cast<std::size_t>(lines));
+    cut = true;
+  }
+  if (cut && !shown.empty()) {
+    std::string& last = shown.back();
+    while (!last.empty() && !fits(last + " ...")) {
+      const std::size_t space = last.rfind(' ');
+      last.erase(space == std::string::npos ? 0 : space);
+    }
+    last += last.empty() ? "..." : " ...";
+  }
+  shown.resize(static_cast<std::size_t>(lines));  // empty lines keep the height
+  ImGui::BeginGroup();
+  for (const std::string& l : shown) {
+    switch (style) {
+      case text_style::plain:
+        ImGui::TextUnformatted(l.c_str());
+        break;
+      case text_style::disabled:
+        ImGui::TextDisabled("%s", l.c_str());
+        break;
+      case text_style::coloured:
+        ImGui::TextColored(colour, "%s", l.c_str());
+        break;
+    }
+  }
+  ImGui::EndGroup();
+  if (cut && ImGui::IsItemHovered()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 35.0f);
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+  }
+}
+
+std::string format(const char* format_string, auto... values) {
+  char text[512];
+  std::snprintf(text, sizeof text, format_string, values...);
+  return text;
+}
+
+// The state of the run in one word, for the status line and the layout log.
+const char* run_state(const scene& the_scene) {
+  const run_status& status = the_scene.status();
+  if (status.diverged)
+    return "diverged";
+  if (!the_scene.control.running)
+    return "paused";
+  if (status.behind_real_time)
+    return "behind real time";
+  return "running";
+}
+
+// The readouts at the top of the panel, always in sight, in a fixed number of lines: the status
+// messages (paused, behind real time, diverged, the cloth's path) take their place without
+// pushing the sliders below.
+constexpr int readout_lines = 5;
+void show_readouts(const scene& the_scene) {
+  const run_status& status = the_scene.status();
+  ImGui::Text("t = %.3f s   step %ld", status.time, status.step);
+  const double time_step = the_scene.current_time_step();
+  ImGui::Text("%.0f steps/s (%.2fx real time)   %.0f frames/s", the_scene.steps_per_second(),
+              the_scene.steps_per_second() * time_step, the_scene.frames_per_second());
+
+  // The cloth's path: G and M act on the cloth whatever stage is shown.
+  const bool on_gpu = the_scene.backend() == cloth_backend::gpu;
+  if (the_scene.stage() == stage_kind::cloth) {
+    if (on_gpu)
+      fixed_lines("cloth on the GPU (float, fragment shaders)   G: CPU", 1, text_style::coloured,
+                  quiet_green);
+    else
+      fixed_lines("cloth on the CPU (double)   G: GPU", 1);
+  } else {
+    fixed_lines(std::string("G, M act on the cloth (stage 3), now on the ") +
+                    backend_name(the_scene.backend()),
+                1, text_style::disabled);
+  }
+
+  // One status line, then one line for the details or the cloth's last switch.
+  const std::string state = run_state(the_scene);
+  if (state == "diverged") {
+    fixed_lines(format("diverged at step %ld (t = %.3f s): R resets", status.step, status.time), 1,
+                text_style::coloured, warning_red);
+    fixed_lines(status.divergence_reason + "; " + status.divergence_advice, 1, text_style::coloured,
+                warning_red);
+    return;
+  }
+  if (state == "paused")
+    fixed_lines("paused (Space runs, N steps once)", 1, text_style::coloured, caution_yellow);
+  else if (state == "behind real time")
+    fixed_lines("behind real time: a frame hit its step limit", 1, text_style::coloured,
+                caution_yellow);
+  else
+    fixed_lines("running (Space pauses)", 1, text_style::disabled);
+  fixed_lines(the_scene.backend_message(), 1, text_style::disabled);
+}
+
+// CLOTHLAB_PRINT_LAYOUT=1: prints where the dt slider is whenever it or the run's state changes
+// (the window tests check that status messages move no slider).
+void log_layout(const scene& the_scene) {
+  static const bool asked = std::getenv("CLOTHLAB_PRINT_LAYOUT") != nullptr;
+  if (!asked)
+    return;
+  static std::string last;
+  const std::string line =
+      format("clothlab-window: layout: %s stage, %s, %s, message %s: dt slider at y = %.1f",
+             std::string(stage_name(the_scene.stage())).c_str(), run_state(the_scene),
+             backend_name(the_scene.backend()), the_scene.backend_message().empty() ? "no" : "yes",
+             time_step_slider_y);
+  if (line == last)
+    return;
+  last = line;
+  std::printf("%s\n", line.c_str());
+  std::fflush(stdout);
+}
 
 // Every slider clamps what is typed after Ctrl+click too, so that no value outside its range
 // (a zero time step, a grid of 1) can reach the simulation.
@@ -35,33 +193,6 @@ bool section(const char* title) {
   return ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen);
 }
 
-void show_readouts(const scene& the_scene) {
-  const run_status& status = the_scene.status();
-  ImGui::Text("t = %.3f s   step %ld", status.time, status.step);
-  const double time_step = the_scene.current_time_step();
-  ImGui::Text("%.0f steps/s (%.2fx real time)   %.0f frames/s", the_scene.steps_per_second(),
-              the_scene.steps_per_second() * time_step, the_scene.frames_per_second());
-  if (the_scene.stage() == stage_kind::cloth) {
-    if (the_scene.backend() == cloth_backend::gpu)
-      ImGui::TextColored(quiet_green, "cloth on the GPU (float, fragment shaders)   G: CPU");
-    else
-      ImGui::TextUnformatted("cloth on the CPU (double)   G: GPU");
-  }
-  if (status.diverged) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(warning_red,
-                       "diverged at step %ld (t = %.3f s): reduce dt or K, or add damping. "
-                       "R resets. (%s; %s)",
-                       status.step, status.time, status.divergence_reason.c_str(),
-                       status.divergence_advice.c_str());
-    ImGui::PopTextWrapPos();
-  } else if (!the_scene.control.running) {
-    ImGui::TextColored(caution_yellow, "paused (Space runs, N steps once)");
-  } else if (status.behind_real_time) {
-    ImGui::TextColored(caution_yellow, "behind real time: a frame hit its step limit");
-  }
-}
-
 // Question 4: the map of stable (green) and diverged (red) runs over dt (across) and K (up)
 // around the current values (the outlined centre cell); a white dot marks the cells that the
 // theory (stability.hpp) predicts unstable.
@@ -75,8 +206,9 @@ void show_stability_map(scene& the_scene) {
     ImGui::SameLine();
     if (ImGui::Button("Stop"))
       map.cancel();
-    ImGui::ProgressBar(static_cast<float>(map.fraction_done()), {-1.0f, 0.0f});
   }
+  if (map.started())  // stays when done, so that the map below does not move
+    ImGui::ProgressBar(static_cast<float>(map.fraction_done()), {-1.0f, 0.0f});
   if (!map.started() || map.stage() != the_scene.stage())
     return;
 
@@ -189,15 +321,15 @@ void show_stability(const stability_estimate& estimate) {
   ImGui::PushStyleColor(ImGuiCol_PlotHistogram, unstable ? warning_red : quiet_green);
   ImGui::ProgressBar(static_cast<float>(std::min(estimate.ratio, 1.0)), {-1.0f, 0.0f}, overlay);
   ImGui::PopStyleColor();
-  ImGui::PushTextWrapPos(0.0f);
-  ImGui::TextDisabled("%s", estimate.explanation.c_str());
-  ImGui::PopTextWrapPos();
+  fixed_lines(estimate.explanation, 3, text_style::disabled);
 }
 
 // dt, mu, m, g0 and the integrator, which every stage has (model.md, "Common"). While the cloth
 // runs on the GPU, the integrators the GPU does not have are offered greyed out.
-void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool on_gpu = false) {
+void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool cloth = false,
+                   bool on_gpu = false) {
   slider("dt (s)", dynamics.time_step, 1e-4, max_time_step, "%.5f", true);
+  time_step_slider_y = ImGui::GetItemRectMin().y;
   // mu dt stays at most 1 (the damping factor 1 - mu dt must not turn negative) for every dt
   // of the slider above.
   slider("damping mu (1/s)", dynamics.damping, 0.0, 1.0 / max_time_step, "%.3f");
@@ -215,11 +347,8 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool on_
     }
     ImGui::EndCombo();
   }
-  if (on_gpu) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextDisabled("the GPU runs semi-implicit and explicit Euler; the others: G for the CPU");
-    ImGui::PopTextWrapPos();
-  }
+  if (cloth)  // the same line on both paths, so that switching moves nothing
+    fixed_lines("GPU path: semi-implicit and explicit Euler only", 1, text_style::disabled);
 }
 
 constexpr double max_spring_time_step = 0.1;  // s, spring and chain
@@ -253,11 +382,11 @@ void show_gpu_path(const scene& the_scene, user_actions& actions) {
   ImGui::SameLine();
   if (ImGui::RadioButton("GPU (float, fragment shaders)", on_gpu) && !on_gpu)
     actions.switch_cloth_backend = true;
-  ImGui::PushTextWrapPos(0.0f);
-  if (std::string why; !on_gpu && !the_scene.gpu_can_run(why))
-    ImGui::TextColored(caution_yellow, "Not on the GPU: %s", why.c_str());
-  if (!the_scene.backend_message().empty())
-    ImGui::TextDisabled("%s", the_scene.backend_message().c_str());
+  // Fixed lines: a hint, a measurement or a refusal appearing moves nothing below.
+  if (std::string why; !the_scene.gpu_can_run(why))
+    fixed_lines("Not on the GPU: " + why, 2, text_style::coloured, caution_yellow);
+  else
+    fixed_lines("", 2);
 
   ImGui::Text("live: %s, %.0f steps/s (stepping alone)", backend_name(the_scene.backend()),
               the_scene.stepping_rate());
@@ -267,20 +396,29 @@ void show_gpu_path(const scene& the_scene, user_actions& actions) {
   if (ImGui::Button(measure_label.c_str()))
     actions.measure_backends = true;
   const backend_comparison& comparison = the_scene.comparison();
-  if (comparison.measured) {
-    if (comparison.gpu_steps_per_second > 0.0) {
-      ImGui::Text("N = %d   steps/s CPU: %.0f   GPU: %.0f   (GPU/CPU = %.2f x)",
-                  comparison.grid_size, comparison.cpu_steps_per_second,
-                  comparison.gpu_steps_per_second,
-                  comparison.gpu_steps_per_second / comparison.cpu_steps_per_second);
-    } else {
-      ImGui::Text("N = %d   steps/s CPU: %.0f   GPU: -", comparison.grid_size,
-                  comparison.cpu_steps_per_second);
-      ImGui::TextColored(warning_red, "%s", comparison.gpu_error.c_str());
-    }
-    if (comparison.grid_size != the_scene.cloth_stage.grid_size())
-      ImGui::TextDisabled("measured for another N: measure again");
+  if (!comparison.measured) {
+    fixed_lines("N = -   steps/s CPU: -   GPU: -   (not measured yet)", 1, text_style::disabled);
+    fixed_lines("", 1);
+  } else if (comparison.gpu_steps_per_second > 0.0) {
+    fixed_lines(
+        format("N = %d   steps/s CPU: %.0f   GPU: %.0f   (GPU/CPU = %.2f x)", comparison.grid_size,
+               comparison.cpu_steps_per_second, comparison.gpu_steps_per_second,
+               comparison.gpu_steps_per_second / comparison.cpu_steps_per_second),
+        1);
+  } else {
+    fixed_lines(format("N = %d   steps/s CPU: %.0f   GPU: -", comparison.grid_size,
+                       comparison.cpu_steps_per_second),
+                1);
   }
+  if (comparison.measured) {
+    if (comparison.gpu_steps_per_second <= 0.0)
+      fixed_lines(comparison.gpu_error, 1, text_style::coloured, warning_red);
+    else if (comparison.grid_size != the_scene.cloth_stage.grid_size())
+      fixed_lines("measured for another N: measure again", 1, text_style::disabled);
+    else
+      fixed_lines("", 1);
+  }
+  ImGui::PushTextWrapPos(0.0f);
   // BEGIN TEACHER: the answer to question 11, which the student copy leaves to the student
   ImGui::TextDisabled(
       "Q11: every particle is one texel of N x N float (RGBA32F) textures: positions (w: "
@@ -300,7 +438,7 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
   render_settings& display = the_scene.display;
   cloth_parameters& p = stage.parameters;
   if (section("Q4 dt, damping")) {
-    edit_dynamics(p.dynamics, max_cloth_time_step, the_scene.backend() == cloth_backend::gpu);
+    edit_dynamics(p.dynamics, max_cloth_time_step, true, the_scene.backend() == cloth_backend::gpu);
     show_stability(estimate_stability(stage));
   }
   if (section("Q8 springs: three stiffnesses")) {
@@ -431,6 +569,7 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
 
   if (the_scene.status().diverged)
     show_divergence_banner(the_scene.status(), covered_width);
+  log_layout(the_scene);
   return covered_width;
 }
 

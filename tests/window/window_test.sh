@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
-#   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames
+#   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -59,7 +59,8 @@ if [ "$scenario" = divergence ]; then
 elif [ "$scenario" = gpu_switch ]; then
   arguments=(--stage cloth --wind-strength 10)  # the cloth flaps in the wind onto the ground
 fi
-"$program" "${arguments[@]}" >window.log 2>&1 &
+# Every run prints where the dt slider is whenever it or the run's state changes.
+CLOTHLAB_PRINT_LAYOUT=1 "$program" "${arguments[@]}" >window.log 2>&1 &
 pid=$!
 
 window=$(timeout 30 xdotool search --sync --onlyvisible --name '^clothlab$' | head -n 1) ||
@@ -126,7 +127,47 @@ check_cloth_drawn() {
   echo "window test: $file: the cloth's red covers $red of the scene"
 }
 
+# The panel is steady: for one stage, the dt slider is at the same height whatever the status
+# (running, paused, diverged, a message about the cloth's path) in every layout line so far.
+# At least min_states different states must have been seen.
+check_steady_panel() {
+  local stage=$1 min_states=$2 lines positions states
+  lines=$(grep "^clothlab-window: layout: $stage stage," window.log) ||
+    fail "no layout line for the $stage stage (CLOTHLAB_PRINT_LAYOUT)"
+  positions=$(echo "$lines" | sed -E 's/.*dt slider at y = //' | sort -u | wc -l)
+  states=$(echo "$lines" | sed -E 's/: dt slider at.*//' | sort -u | wc -l)
+  [ "$positions" -eq 1 ] || fail "the dt slider moved when the status changed:
+$lines"
+  [ "$states" -ge "$min_states" ] || fail "only $states states seen, expected $min_states:
+$lines"
+  echo "window test: the $stage stage's dt slider stayed put through $states states"
+}
+
+# The panel's sliders (x 0-390, y 280-760: the Q4 to Q9 sections of the cloth) are the same
+# pixels in two screenshots.
+check_same_panel() {
+  local first=$1 second=$2 different
+  convert "$first" -crop 390x480+0+280 +repage first-panel.png || fail "cannot crop $first"
+  convert "$second" -crop 390x480+0+280 +repage second-panel.png || fail "cannot crop $second"
+  different=$(compare -metric AE first-panel.png second-panel.png null: 2>&1) || true
+  [ "$different" = 0 ] || fail "the panel's sliders moved between $first and $second ($different pixels differ)"
+  echo "window test: the panel's sliders are the same pixels in $first and $second"
+}
+
 case "$scenario" in
+  steady_panel)
+    # The cloth: running, paused, running, switched to the GPU (a message), stepped.
+    sleep 1
+    running=$(screenshot_of cloth)
+    press space
+    paused=$(screenshot_of cloth)
+    check_same_panel "$running" "$paused"
+    press space
+    press g
+    wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
+    press n
+    check_steady_panel cloth 4
+    ;;
   keys)
     press 1
     check_image "$(screenshot_of spring)" 1280 800 200
@@ -157,6 +198,7 @@ case "$scenario" in
       sleep 0.25
     done
     [ "$(grep -c "diverged at step" window.log)" -ge 2 ] || fail "R did not restart the run"
+    check_steady_panel spring 2  # running, then diverged: the slider did not move
     ;;
   gpu_switch)
     # The cloth runs a while on the CPU, goes to the GPU while running, is drawn from the GPU's
@@ -177,7 +219,7 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence, gpu_switch or frames)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames or steady_panel)"
     ;;
 esac
 
