@@ -31,20 +31,22 @@ class renderer {
   // false with an error naming the file (and the compiler's log).
   bool init(std::string& error);
 
-  // Each clears and draws into the currently bound framebuffer, viewport width x height.
+  // Each clears and draws into the currently bound framebuffer, in the width x height rectangle
+  // whose lower-left corner is at (left, 0) (viewport and scissor: the window's part beside the
+  // control panel); the rest of the framebuffer is left as it is.
   void draw(const single_spring& stage, const camera& view, const render_settings& settings,
-            int width, int height);
+            int width, int height, int left = 0);
   void draw(const coupled_springs& stage, const camera& view, const render_settings& settings,
-            int width, int height);
+            int width, int height, int left = 0);
   void draw(const spring_mesh& cloth, const camera& view, const render_settings& settings,
-            int width, int height);
+            int width, int height, int left = 0);
   // The GPU cloth (question 11): the CPU sends a flat N x N grid once; the vertex shader fetches
   // each vertex's position and normal from N x N RGBA32F textures (texel (ku, kv) = particle
   // ku + N kv). Lighting, texture, ground and wireframe as for the CPU cloth; the springs
   // overlay and the pins are taken from `cloth` (its parameters and topology, not its positions).
   void draw_from_textures(GLuint position_texture, GLuint normal_texture, const spring_mesh& cloth,
                           const camera& view, const render_settings& settings, int width,
-                          int height);
+                          int height, int left = 0);
 
  private:
   struct impl;

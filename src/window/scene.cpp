@@ -320,39 +320,40 @@ void scene::report_divergence(divergence_status check) {
   }
 }
 
-// Display: the renderer reads the state and never changes it.
+// Display: the renderer reads the state and never changes it. It draws straight into the
+// window's framebuffer, in the part right of the panel (viewport and scissor at x = left).
 void scene::draw(int left, int width, int height) {
-  const bool offset = left > 0 && framebuffer_.bind(width, height);
-  if (!offset) {
-    width += left;  // the whole window
-    left = 0;
+  // Under the panel (drawn over it, nearly opaque): the scene's background colour.
+  glViewport(0, 0, left + width, height);
+  if (left > 0) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, left, height);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
   }
   if (status().diverged) {
     // Nothing finite to draw: an empty scene (the renderer's background); the panel says why.
-    glViewport(0, 0, width, height);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  } else {
-    switch (stage_) {
-      case stage_kind::spring:
-        renderer_.draw(spring_stage, view, display, width, height);
-        break;
-      case stage_kind::coupled:
-        renderer_.draw(chain_stage, view, display, width, height);
-        break;
-      case stage_kind::cloth:
-        if (backend_ == cloth_backend::gpu) {
-          // Question 11: the flat grid's vertex shader fetches positions and normals from the
-          // GPU cloth's textures.
-          renderer_.draw_from_textures(gpu_.position_texture(), gpu_.normal_texture(), cloth_stage,
-                                       view, display, width, height);
-          break;
-        }
-        renderer_.draw(cloth_stage, view, display, width, height);
-        break;
-    }
+    return;
   }
-  if (offset)
-    framebuffer_.copy_to_window(left);
+  switch (stage_) {
+    case stage_kind::spring:
+      renderer_.draw(spring_stage, view, display, width, height, left);
+      break;
+    case stage_kind::coupled:
+      renderer_.draw(chain_stage, view, display, width, height, left);
+      break;
+    case stage_kind::cloth:
+      if (backend_ == cloth_backend::gpu) {
+        // Question 11: the flat grid's vertex shader fetches positions and normals from the GPU
+        // cloth's textures.
+        renderer_.draw_from_textures(gpu_.position_texture(), gpu_.normal_texture(), cloth_stage,
+                                     view, display, width, height, left);
+        break;
+      }
+      renderer_.draw(cloth_stage, view, display, width, height, left);
+      break;
+  }
 }
 
 // Question 4: kinetic + gravitational + spring energy. Without damping the exact motion keeps it

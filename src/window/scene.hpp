@@ -16,7 +16,6 @@
 #include "gpu_cloth.hpp"
 #include "options.hpp"
 #include "renderer.hpp"
-#include "scene_framebuffer.hpp"
 #include "single_spring.hpp"
 #include "spring_mesh.hpp"
 #include "stability.hpp"
@@ -173,7 +172,6 @@ class scene {
   std::array<std::vector<float>, 4> energy_history_;  // kinetic, gravity, spring, total
 
   renderer renderer_;
-  scene_framebuffer framebuffer_;
 
   // Steps and frames counted over about half a second of wall-clock time.
   using clock = std::chrono::steady_clock;
