@@ -90,6 +90,15 @@ window_input glfw_context::poll_events() {
   return gathered;
 }
 
+window_input glfw_context::wait_for_events(double seconds, bool& woke_early) {
+  const double start = glfwGetTime();
+  glfwWaitEventsTimeout(seconds);
+  woke_early = glfwGetTime() - start < seconds;
+  window_input gathered = std::move(input_);
+  input_ = {};
+  return gathered;
+}
+
 bool glfw_context::is_minimised() const {
   return glfwGetWindowAttrib(window_, GLFW_ICONIFIED) == GLFW_TRUE || framebuffer_width() == 0 ||
          framebuffer_height() == 0;

@@ -40,6 +40,9 @@ class glfw_context final : public gl_context {
 
   // Processes pending events and returns the input gathered since the last call.
   window_input poll_events();
+  // The same, but first sleeps until an event comes or `seconds` pass (a paused, idle window).
+  // woke_early tells which: true when an event ended the wait.
+  window_input wait_for_events(double seconds, bool& woke_early);
   // True while the window is iconified or its framebuffer is 0 x 0: nothing can be drawn.
   bool is_minimised() const;
   // Sleeps until the next event (used while minimised, so that the loop does not spin).

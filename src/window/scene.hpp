@@ -89,6 +89,12 @@ class scene {
   void reset_view() { view = camera::default_for(stage_); }
 
   stage_kind stage() const { return stage_; }
+  // True when the next frame would look like the last one unless the user acts: paused or
+  // diverged, no step asked for, no stability map being computed.
+  bool idle() const {
+    return (!control.running || status().diverged) && !single_step_requested_ &&
+           !stability_explorer.running();
+  }
   const run_status& status() const { return status_[static_cast<int>(stage_)]; }
   double current_time_step() const;  // dt of the current stage, s
   // Question 4: the energies after the last frame's steps, and each of them (J) after each of

@@ -30,6 +30,10 @@ using namespace clothlab;
 
 constexpr int initial_width = 1280;  // screen coordinates
 constexpr int initial_height = 800;
+// A paused window draws a frame when an event comes (then a few more) or after this long (the
+// readouts stay fresh); otherwise it sleeps instead of drawing the same frame again.
+constexpr double idle_redraw_seconds = 0.5;
+constexpr int frames_drawn_after_event = 3;
 
 // Dear ImGui with its GLFW and OpenGL 3 backends, for the lifetime of the object.
 class imgui_session {
@@ -248,9 +252,22 @@ int main(int argc, char** argv) {
   if (start.frames > 0)
     context->set_vsync(false);
 
+  // Frames still to draw at full rate after an event: Dear ImGui shows the effect of a click or a
+  // hover a frame or two after the event.
+  int frames_after_event = 0;
+
   while (!context->should_close()) {
-    // ---- 1. Poll: window events, keys, mouse ----
-    const window_input input = context->poll_events();
+    // ---- 1. Poll: window events, keys, mouse (a paused, idle window sleeps until one comes) ----
+    window_input input;
+    if (the_scene.idle() && frames_after_event == 0 && start.frames == 0) {
+      bool woke_early = false;
+      input = context->wait_for_events(idle_redraw_seconds, woke_early);
+      if (woke_early)
+        frames_after_event = frames_drawn_after_event;
+    } else {
+      input = context->poll_events();
+      frames_after_event = std::max(frames_after_event - 1, 0);
+    }
     if (context->is_minimised()) {
       context->wait_events();  // nothing to draw: sleep until the window comes back
       previous_time = glfwGetTime();

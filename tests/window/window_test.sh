@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
-#   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel
+#   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel|paused_idle
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -155,6 +155,21 @@ check_same_panel() {
 }
 
 case "$scenario" in
+  paused_idle)
+    # Paused, the window sleeps between events instead of drawing the same frame again: under a
+    # quarter of a core over 3 s (running, it takes one or two cores on llvmpipe).
+    press space
+    sleep 1
+    ticks_before=$(awk '{print $14 + $15}' /proc/$pid/stat)
+    sleep 3
+    ticks_after=$(awk '{print $14 + $15}' /proc/$pid/stat)
+    percent=$(( (ticks_after - ticks_before) * 100 / (3 * $(getconf CLK_TCK)) ))
+    [ "$percent" -lt 25 ] || fail "the paused window used $percent % of a core (expected under 25 %)"
+    echo "window test: paused, the window used $percent % of a core"
+    # It still answers keys while idle: a step (N), then a screenshot (P).
+    press n
+    check_image "$(screenshot_of cloth)" 1280 800 200
+    ;;
   steady_panel)
     # The cloth: running, paused, running, switched to the GPU (a message), stepped.
     sleep 1
@@ -219,7 +234,7 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames or steady_panel)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel or paused_idle)"
     ;;
 esac
 
