@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "plot.hpp"
 #include "stability.hpp"  // the core's: step-size limits and divergence (question 4)
 
 namespace clothlab {
@@ -213,10 +214,40 @@ void show_stability_map(scene& the_scene) {
     return;
 
   const std::vector<sweep_cell> cells = map.cells();
-  const float cell_width = ImGui::GetContentRegionAvail().x / stability_map::columns;
+  if (cells.size() < static_cast<std::size_t>(stability_map::columns * stability_map::rows))
+    return;
+  // Axes: K (N/m) of every other row on the left, dt (s) of every third column below.
+  const float text_height = ImGui::GetTextLineHeight();
+  float label_width = ImGui::CalcTextSize("K (N/m)").x;
+  for (int row = 0; row < stability_map::rows; row += 2) {
+    const std::string label = tick_label(cells[row * stability_map::columns].stiffness);
+    label_width = std::max(label_width, ImGui::CalcTextSize(label.c_str()).x);
+  }
   const float cell_height = 14.0f;
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const ImVec2 corner = ImGui::GetCursorScreenPos();
+  const ImVec2 origin = {corner.x + label_width + 6.0f, corner.y + text_height + 2.0f};
+  const float cell_width =
+      (ImGui::GetContentRegionAvail().x - label_width - 6.0f) / stability_map::columns;
   ImDrawList& draw = *ImGui::GetWindowDrawList();
+  const ImU32 text_colour = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+  draw.AddText(corner, text_colour, "K (N/m)");
+  for (int row = 0; row < stability_map::rows; row += 2) {
+    const std::string label = tick_label(cells[row * stability_map::columns].stiffness);
+    const float y =
+        origin.y + (static_cast<float>(stability_map::rows - 1 - row) + 0.5f) * cell_height;
+    draw.AddText({origin.x - 4.0f - ImGui::CalcTextSize(label.c_str()).x, y - text_height / 2},
+                 text_colour, label.c_str());
+  }
+  const float bottom = origin.y + stability_map::rows * cell_height;
+  draw.AddText({corner.x, bottom + 2.0f}, text_colour, "dt (s)");
+  for (int column = 0; column < stability_map::columns; column += 3) {
+    const std::string label = tick_label(cells[column].time_step);
+    const float half = ImGui::CalcTextSize(label.c_str()).x / 2;
+    const float x = origin.x + (static_cast<float>(column) + 0.5f) * cell_width;
+    draw.AddLine({x, bottom}, {x, bottom + 3.0f}, text_colour);
+    draw.AddText({std::max(x - half, origin.x), bottom + 3.0f}, text_colour, label.c_str());
+  }
+
   const sweep_cell* hovered = nullptr;
   for (std::size_t index = 0; index < cells.size(); ++index) {
     const sweep_cell& cell = cells[index];
@@ -237,7 +268,8 @@ void show_stability_map(scene& the_scene) {
     if (ImGui::IsMouseHoveringRect(low, high))
       hovered = &cell;
   }
-  ImGui::Dummy({cell_width * stability_map::columns, cell_height * stability_map::rows});
+  ImGui::Dummy({ImGui::GetContentRegionAvail().x,
+                text_height * 2 + 5.0f + cell_height * stability_map::rows});
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled(
       "dt across (x sqrt 2 per cell), K up (x 10^1/4), the outlined centre is "
@@ -255,22 +287,73 @@ void show_stability_map(scene& the_scene) {
   }
 }
 
-// Question 4: what the integrator does with the energy (energy.hpp), frame after frame.
+// Question 4: what the integrator does with the energy (energy.hpp), frame after frame, against
+// the simulated time; each curve on its own scale (the shape is the lesson: growth, oscillation,
+// decay), the four over one time axis.
 void show_energy(const scene& the_scene) {
   const energy_breakdown& energy = the_scene.energy();
   const double now[4] = {energy.kinetic, energy.gravity, energy.spring, energy.total};
   constexpr const char* names[4] = {"kinetic", "gravity", "spring", "total"};
-  const float heights[4] = {34.0f, 34.0f, 34.0f, 56.0f};
+  constexpr ImU32 colours[4] = {IM_COL32(110, 190, 255, 255), IM_COL32(150, 220, 140, 255),
+                                IM_COL32(255, 190, 90, 255), IM_COL32(240, 240, 240, 255)};
+  const std::vector<float>& times = the_scene.energy_times();
   for (std::size_t i = 0; i < 4; ++i) {
     const std::vector<float>& history = the_scene.energy_history()[i];
-    char overlay[64];
-    std::snprintf(overlay, sizeof overlay, "%s %.5g J", names[i], now[i]);
-    ImGui::PushID(static_cast<int>(i));
-    // Each curve on its own scale: the shape (growth, oscillation, decay) is the lesson.
-    ImGui::PlotLines("##energy", history.data(), static_cast<int>(history.size()), 0, overlay,
-                     FLT_MAX, FLT_MAX, {ImGui::GetContentRegionAvail().x, heights[i]});
-    ImGui::PopID();
+    const plot_series curve = {times, history, colours[i], names[i]};
+    plot_style style;
+    style.height = i == 3 ? 78.0f : 52.0f;
+    style.x_numbers = i == 3;  // the time axis's numbers under the last one
+    style.x_unit = "t (s)";
+    style.y_unit = "J";
+    style.title = format("%s %.5g J", names[i], now[i]);
+    style.min_label_width = ImGui::CalcTextSize("-0.000").x;
+    line_plot(names[i], {&curve, 1}, style);
   }
+}
+
+// Question 2: the spring's extension along its rest direction, simulated and exact (the 1D
+// damped oscillator, spring_motion.hpp), and their difference.
+void show_spring_motion(scene& the_scene, user_actions& actions) {
+  actions.reset |= ImGui::Checkbox("1D start: v1 along the spring (resets)",
+                                   &the_scene.spring_one_dimensional_start);
+  const spring_motion& motion = the_scene.motion();
+  const std::vector<float>& times = motion.times();
+  // The exact solution as a smooth curve over the plotted time, not only at the frames.
+  std::vector<float> exact_times, exact_values;
+  if (!times.empty()) {
+    constexpr int samples = 300;
+    for (int i = 0; i <= samples; ++i) {
+      const double t = times.front() + double(times.back() - times.front()) * i / samples;
+      exact_times.push_back(static_cast<float>(t));
+      exact_values.push_back(static_cast<float>(motion.exact(t)));
+    }
+  }
+  const plot_series extension[] = {
+      {exact_times, exact_values, IM_COL32(240, 240, 240, 255), "exact"},
+      {times, motion.simulated(), IM_COL32(255, 150, 60, 255), "simulated"}};
+  plot_style style;
+  style.height = 96.0f;
+  style.x_unit = "t (s)";
+  style.y_unit = "m";
+  style.title = "x (m): simulated (orange), exact (white)";
+  line_plot("extension", extension, style);
+  const plot_series error = {times, motion.error(), IM_COL32(255, 90, 80, 255), "error"};
+  style.height = 66.0f;
+  style.y_from_zero = true;
+  style.title = "error (m): simulated - exact";
+  line_plot("error", {&error, 1}, style);
+  fixed_lines(format("largest |error| %.3g m since t = %.2f s (the reset or the last change of "
+                     "K, mu, m, g0)",
+                     motion.largest_error(), motion.start_time()),
+              2, text_style::disabled);
+  if (the_scene.spring_one_dimensional_start)
+    fixed_lines("1D start: the motion is along the spring, the 1D model's exactly", 2,
+                text_style::disabled);
+  else
+    fixed_lines(
+        "x along the rest direction; the mass also swings sideways (v1 is across the "
+        "spring), which the 1D model leaves out: tick 1D start for the integrator alone",
+        2, text_style::disabled);
 }
 
 void edit_stage(scene& the_scene, user_actions& actions) {
@@ -355,12 +438,15 @@ constexpr double max_spring_time_step = 0.1;  // s, spring and chain
 constexpr double max_cloth_time_step = 0.02;  // s
 constexpr double max_stiffness = 1e5;         // N/m: far past every stability limit
 
-void edit_single_spring(single_spring& stage) {
+void edit_single_spring(scene& the_scene, user_actions& actions) {
+  single_spring& stage = the_scene.spring_stage;
   if (section("Q2-Q4 spring: dt, K, damping")) {
     edit_dynamics(stage.parameters.dynamics, max_spring_time_step);
     slider("stiffness K (N/m)", stage.parameters.stiffness, 0.0, max_stiffness, "%.2f", true);
     show_stability(estimate_stability(stage));
   }
+  if (section("Q2 motion: extension x(t), exact solution, error"))
+    show_spring_motion(the_scene, actions);
 }
 
 void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
@@ -547,7 +633,7 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
     }
     switch (the_scene.stage()) {
       case stage_kind::spring:
-        edit_single_spring(the_scene.spring_stage);
+        edit_single_spring(the_scene, actions);
         break;
       case stage_kind::coupled:
         edit_coupled_springs(the_scene.chain_stage, actions);

@@ -1,5 +1,7 @@
 #include "scene.hpp"
 
+#include <glm/geometric.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -40,8 +42,20 @@ bool scene::init_renderer(std::string& error) {
 
 // ---- Initialisation ---------------------------------------------------------------------
 
-void scene::load_model() {
+// Stage 1, with the 1D start of question 2 when asked: only the component of v1 along the
+// spring (p1 - p0) is kept.
+void scene::load_spring_stage() {
   spring_stage.load_model();
+  if (!spring_one_dimensional_start)
+    return;
+  particle_system& particles = spring_stage.particles();
+  const glm::dvec3 axis = particles.get_position(1) - particles.get_position(0);
+  const glm::dvec3 v = particles.get_velocity(1);
+  particles.set_velocity(1, glm::dot(v, axis) / glm::dot(axis, axis) * axis);
+}
+
+void scene::load_model() {
+  load_spring_stage();
   chain_stage.load_model();
   cloth_stage.load_model();
   status_ = {};
@@ -51,7 +65,10 @@ void scene::load_model() {
 }
 
 void scene::reset() {
-  with_current_stage([](auto& stage) { stage.load_model(); });
+  if (stage_ == stage_kind::spring)
+    load_spring_stage();
+  else
+    with_current_stage([](auto& stage) { stage.load_model(); });
   current_status() = {};
   if (stage_ == stage_kind::cloth)
     reload_gpu_cloth();  // the reset keeps the path
@@ -371,11 +388,17 @@ void scene::record_energy() {
       history.erase(history.begin());
     history.push_back(static_cast<float>(values[i]));
   }
+  if (energy_times_.size() == frames_kept)
+    energy_times_.erase(energy_times_.begin());
+  energy_times_.push_back(static_cast<float>(status().time));
+  if (stage_ == stage_kind::spring)
+    spring_motion_.record(spring_stage, status().time, status().step);
 }
 
 void scene::restart_energy_history() {
   for (std::vector<float>& history : energy_history_)
     history.clear();
+  energy_times_.clear();
   record_energy();
 }
 

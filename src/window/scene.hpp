@@ -18,6 +18,7 @@
 #include "renderer.hpp"
 #include "single_spring.hpp"
 #include "spring_mesh.hpp"
+#include "spring_motion.hpp"
 #include "stability.hpp"
 #include "stability_map.hpp"
 
@@ -102,6 +103,9 @@ class scene {
   // spring, total.
   const energy_breakdown& energy() const { return energy_; }
   const std::array<std::vector<float>, 4>& energy_history() const { return energy_history_; }
+  const std::vector<float>& energy_times() const { return energy_times_; }  // t of each, s
+  // Question 2: the single spring's extension against the exact solution of the 1D model.
+  const spring_motion& motion() const { return spring_motion_; }
   double steps_per_second() const { return measured_steps_per_second_; }
   double frames_per_second() const { return measured_frames_per_second_; }
   // Steps taken since the program started, every stage and path together (--frames reports it).
@@ -129,6 +133,10 @@ class scene {
   single_spring spring_stage;   // stage 1, section 3
   coupled_springs chain_stage;  // stage 2, question 5
   spring_mesh cloth_stage;      // stage 3, section 4
+
+  // Question 2: the single spring starts with its velocity along the spring (its component along
+  // the rest direction), so that the motion is exactly the 1D model's. Applied at load and reset.
+  bool spring_one_dimensional_start = false;
 
   simulation_control control;
   render_settings display;
@@ -166,6 +174,7 @@ class scene {
   void check_gpu_cloth();
   void record_energy();
   void restart_energy_history();
+  void load_spring_stage();
 
   run_status& current_status() { return status_[static_cast<int>(stage_)]; }
 
@@ -176,6 +185,8 @@ class scene {
 
   energy_breakdown energy_;
   std::array<std::vector<float>, 4> energy_history_;  // kinetic, gravity, spring, total
+  std::vector<float> energy_times_;                   // t of each entry, s
+  spring_motion spring_motion_;
 
   renderer renderer_;
 
