@@ -6,6 +6,7 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -460,8 +461,65 @@ void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
   }
 }
 
+// Question 11: the three state textures, side by side, texel (ku, kv) = particle ku + N kv; the
+// values of the texel under the mouse in a tooltip.
+void show_state_textures(scene& the_scene) {
+  const state_images& images = the_scene.state_textures();
+  fixed_lines(the_scene.state_textures_from_gpu()
+                  ? "GPU path: its state textures, read back"
+                  : "CPU path: its arrays, laid out as the GPU textures",
+              1);
+  constexpr std::array<std::pair<state_images::which, const char*>, 3> shown = {{
+      {state_images::position, "position"},
+      {state_images::velocity, "velocity"},
+      {state_images::normal, "normal"},
+  }};
+  const float spacing = ImGui::GetStyle().ItemSpacing.x;
+  const float side = std::floor((ImGui::GetContentRegionAvail().x - 2 * spacing) / 3);
+  for (const auto& [image, name] : shown) {
+    if (image != state_images::position)
+      ImGui::SameLine();
+    ImGui::BeginGroup();
+    ImGui::TextUnformatted(name);
+    const ImVec2 top_left = ImGui::GetCursorScreenPos();
+    // Texel row kv = 0 at the top, as in the texture's memory.
+    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(images.texture(image))),
+                 {side, side});
+    if (ImGui::IsItemHovered() && images.grid_size() > 0) {
+      const ImVec2 mouse = ImGui::GetIO().MousePos;
+      const int n = images.grid_size();
+      const int ku = std::clamp(
+          static_cast<int>((mouse.x - top_left.x) / side * static_cast<float>(n)), 0, n - 1);
+      const int kv = std::clamp(
+          static_cast<int>((mouse.y - top_left.y) / side * static_cast<float>(n)), 0, n - 1);
+      const std::array<double, 3> value = images.texel(image, ku, kv);
+      ImGui::BeginTooltip();
+      ImGui::Text("texel (%d, %d) = particle %d", ku, kv, ku + n * kv);
+      ImGui::Text("%s = (%.4g, %.4g, %.4g)", name, value[0], value[1], value[2]);
+      ImGui::EndTooltip();
+    }
+    ImGui::EndGroup();
+  }
+  for (const auto& [image, name] : shown)
+    fixed_lines(std::string(name) + ": " + images.legend(image), 2, text_style::disabled);
+}
+
+// Question 12: which OpenGL renderer draws and runs the GPU path.
+void show_renderer(const scene& the_scene) {
+  const std::string& name = the_scene.renderer_name();
+  fixed_lines("OpenGL renderer: " + name, 1, text_style::disabled);
+  const bool software = name.find("llvmpipe") != std::string::npos ||
+                        name.find("softpipe") != std::string::npos ||
+                        name.find("SWR") != std::string::npos;
+  if (software)
+    fixed_lines(name.substr(0, name.find(' ')) + ": software, the GPU is the CPU here", 1,
+                text_style::coloured, caution_yellow);
+  else
+    fixed_lines("a hardware GPU", 1, text_style::disabled);
+}
+
 // Questions 11 and 12: which path runs the cloth, the switch, and both paths' speeds.
-void show_gpu_path(const scene& the_scene, user_actions& actions) {
+void show_gpu_path(scene& the_scene, user_actions& actions) {
   const bool on_gpu = the_scene.backend() == cloth_backend::gpu;
   if (ImGui::RadioButton("CPU (double)", !on_gpu) && on_gpu)
     actions.switch_cloth_backend = true;
@@ -476,6 +534,7 @@ void show_gpu_path(const scene& the_scene, user_actions& actions) {
 
   ImGui::Text("live: %s, %.0f steps/s (stepping alone)", backend_name(the_scene.backend()),
               the_scene.stepping_rate());
+  show_renderer(the_scene);
   const std::string measure_label =
       "Measure both (M): " + std::to_string(steps_per_backend_measurement) +
       " steps each, on copies";
@@ -504,6 +563,7 @@ void show_gpu_path(const scene& the_scene, user_actions& actions) {
     else
       fixed_lines("", 1);
   }
+  show_state_textures(the_scene);
   ImGui::PushTextWrapPos(0.0f);
   // BEGIN TEACHER: the answer to question 11, which the student copy leaves to the student
   ImGui::TextDisabled(

@@ -37,7 +37,42 @@ scene::scene(const options& start)
       stage_(start.stage) {}
 
 bool scene::init_renderer(std::string& error) {
+  if (const GLubyte* name = glGetString(GL_RENDERER); name != nullptr)
+    renderer_name_ = reinterpret_cast<const char*>(name);
   return renderer_.init(error);
+}
+
+// Question 11: positions and velocities are the cloth's (on the GPU path, read back from its
+// textures once per frame); normals are read from the GPU's normal texture, or computed on the
+// CPU as the CPU path does (central differences, model.md).
+const state_images& scene::state_textures() {
+  const long step = status_[static_cast<int>(stage_kind::cloth)].step;
+  const bool from_gpu = backend_ == cloth_backend::gpu && gpu_.is_loaded() &&
+                        gpu_.grid_size() == cloth_stage.grid_size();
+  const int n = cloth_stage.grid_size();
+  if (step == state_images_step_ && from_gpu == state_images_from_gpu_ &&
+      state_images_.grid_size() == n)
+    return state_images_;
+  const particle_system& particles = cloth_stage.particles();
+  const auto texels = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+  normal_scratch_.resize(3 * texels);
+  if (from_gpu) {
+    texel_scratch_.resize(4 * texels);
+    glBindTexture(GL_TEXTURE_2D, gpu_.normal_texture());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texel_scratch_.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    for (std::size_t k = 0; k < texels; ++k) {
+      for (std::size_t c = 0; c < 3; ++c)
+        normal_scratch_[3 * k + c] = texel_scratch_[4 * k + c];
+    }
+  } else {
+    compute_vertex_normals(n, particles.position, normal_scratch_);
+  }
+  state_images_.update(n, particles.position, particles.velocity, normal_scratch_);
+  state_images_step_ = step;
+  state_images_from_gpu_ = from_gpu;
+  return state_images_;
 }
 
 // ---- Initialisation ---------------------------------------------------------------------

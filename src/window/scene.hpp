@@ -21,6 +21,7 @@
 #include "spring_motion.hpp"
 #include "stability.hpp"
 #include "stability_map.hpp"
+#include "state_images.hpp"
 
 namespace clothlab {
 
@@ -128,6 +129,12 @@ class scene {
   // Question 12: times `steps` steps of each path on copies of the current cloth.
   void measure_both_backends(int steps);
   const backend_comparison& comparison() const { return comparison_; }
+  // Question 11: the cloth's state as the GPU's N x N textures hold it, as small images; made
+  // again when the cloth stepped since the last call (needs the GL context).
+  const state_images& state_textures();
+  bool state_textures_from_gpu() const { return state_images_from_gpu_; }
+  // Question 12: the OpenGL renderer (GL_RENDERER), e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+  const std::string& renderer_name() const { return renderer_name_; }
 
   // The three stages of the lab; the control panel edits their public `parameters`.
   single_spring spring_stage;   // stage 1, section 3
@@ -208,6 +215,13 @@ class scene {
   gpu_cloth gpu_;
   std::string backend_message_;
   backend_comparison comparison_;
+  std::string renderer_name_;
+
+  state_images state_images_;
+  long state_images_step_ = -1;  // the cloth's step they show (-1: none yet)
+  bool state_images_from_gpu_ = false;
+  std::vector<double> normal_scratch_;
+  std::vector<float> texel_scratch_;
 };
 
 }  // namespace clothlab
