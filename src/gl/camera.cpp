@@ -10,11 +10,11 @@
 namespace clothlab {
 namespace {
 
-constexpr float max_pitch = 1.5f;     // rad: never straight above or below (lookAt needs it)
-constexpr float min_distance = 0.2f;  // m
-constexpr float max_distance = 50.0f;
-constexpr float near_plane = 0.05f;  // m
-constexpr float far_plane = 200.0f;  // m
+constexpr float max_pitch = 1.5f;       // rad: never straight above or below (lookAt needs it)
+constexpr float min_distance = 0.2f;    // m
+constexpr float max_distance = 100.0f;  // m: a long soft chain hangs tens of metres
+constexpr float near_plane = 0.05f;     // m
+constexpr float far_plane = 200.0f;     // m
 const glm::vec3 up = {0.0f, 0.0f, 1.0f};
 
 }  // namespace
@@ -44,6 +44,18 @@ camera camera::default_for(stage_kind stage) {
       view.yaw = 0.8f;
       view.pitch = 0.32f;
       break;
+  }
+  return view;
+}
+
+camera camera::framing(stage_kind stage, float x, float y, float bottom, float top) {
+  camera view = default_for(stage);
+  const float extent = std::max(top - bottom, 0.0f);
+  // Seen from the side, an extent e fills the view's height at distance (e / 2) / tan(fov / 2).
+  const float needed = extent / 2.0f / 0.75f / std::tan(view.field_of_view / 2.0f);
+  if (needed > view.distance) {
+    view.distance = std::min(needed, max_distance);
+    view.target = {x, y, (top + bottom) / 2.0f};
   }
   return view;
 }

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -42,6 +43,8 @@ const std::array<glm::vec4, 3> spring_family_colours = {
     glm::vec4{0.05f, 0.60f, 0.20f, 0.80f},  // shear: green
     glm::vec4{0.98f, 0.60f, 0.02f, 0.75f}   // bending: amber
 };
+const glm::vec4 wind_arrow_colour = {0.10f, 0.30f, 0.70f, 1.0f};
+constexpr double wind_arrow_height = 0.35;    // m, above the cloth's highest particle
 constexpr float mass_radius = 0.085f;         // m, as drawn
 constexpr float fixed_point_radius = 0.045f;  // m
 constexpr float pin_radius = 0.022f;          // m
@@ -186,6 +189,7 @@ struct renderer::impl {
   void draw_cloth(const frame& f, const spring_mesh& cloth, const render_settings& settings,
                   const cloth_programs& programs, GLuint vao);
   void add_sphere(const glm::vec3& centre, float radius, const glm::vec3& colour);
+  void draw_wind_arrow(const frame& f, const spring_mesh& cloth);
 };
 
 renderer::impl::~impl() {
@@ -445,6 +449,54 @@ void renderer::impl::draw_ground(const frame& f, float height, const glm::vec2& 
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
+// Question 13: an arrow along the wind direction u_w above the cloth, longer for a stronger wind
+// (K_w). A shaft and a head of two crossed triangles, seen from any side.
+void renderer::impl::draw_wind_arrow(const frame& f, const spring_mesh& cloth) {
+  const cloth_parameters& p = cloth.parameters;
+  if (!(p.wind_strength > 0.0) || p.wind_direction == glm::dvec3(0.0))
+    return;
+  const particle_system& particles = cloth.particles();
+  glm::dvec3 centre(0.0);
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    centre += particles.get_position(k);
+    top = std::max(top, particles.get_position(k).z);
+  }
+  centre /= static_cast<double>(std::max<std::size_t>(particles.size(), 1));
+  centre.z = top + wind_arrow_height;
+  const glm::vec3 direction = glm::normalize(glm::vec3(p.wind_direction));
+  const auto length = static_cast<float>(0.3 + 0.03 * std::min(p.wind_strength, 50.0));  // m
+  const glm::vec3 tip = glm::vec3(centre) + 0.5f * length * direction;
+  const glm::vec3 tail = tip - length * direction;
+  const glm::vec3 base = tip - 0.16f * direction;
+  // Two directions across the arrow.
+  const glm::vec3 helper =
+      std::abs(direction.z) < 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 across = 0.07f * glm::normalize(glm::cross(direction, helper));
+  const glm::vec3 across2 = 0.07f * glm::normalize(glm::cross(direction, across));
+  floats.clear();
+  const auto add = [this](const glm::vec3& v) { floats.insert(floats.end(), {v.x, v.y, v.z}); };
+  // The shaft: a thin cross of four lines (lines are 1 px wide).
+  for (const glm::vec3& offset :
+       {glm::vec3(0.0f), 0.1f * across, -0.1f * across, 0.1f * across2, -0.1f * across2}) {
+    add(tail + offset);
+    add(base + offset);
+  }
+  for (const glm::vec3& side : {across, across2}) {
+    add(tip);
+    add(base + side);
+    add(base - side);
+  }
+  coil_points.upload(floats);
+  flat_program.use();
+  set_uniform(flat_program, "view_projection", f.view_projection);
+  set_uniform(flat_program, "project_onto_ground", 0);
+  set_uniform(flat_program, "flat_colour", wind_arrow_colour);
+  glBindVertexArray(coil_vao);
+  glDrawArrays(GL_LINES, 0, 10);
+  glDrawArrays(GL_TRIANGLES, 10, 6);
+}
+
 // Multiplies the ground's colour by each blob's shade: in front of the ground (its polygon
 // offset), behind whatever stands on it, writing no depth.
 void renderer::impl::draw_blob_shadows(const frame& f, float height) {
@@ -583,6 +635,8 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
 
+  if (settings.show_wind)
+    draw_wind_arrow(f, cloth);
   draw_background(f);
   glBindVertexArray(vao);  // the cloth's again, for its lines
 
@@ -621,6 +675,10 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
   }
   draw_spheres(f);
   glBindVertexArray(0);
+}
+
+glm::vec4 spring_family_colour(spring_family family) {
+  return spring_family_colours[static_cast<std::size_t>(family)];
 }
 
 renderer::renderer() : impl_(new impl) {}

@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include <glm/vec4.hpp>
+
 #include "camera.hpp"
 #include "coupled_springs.hpp"
 #include "gl.hpp"
@@ -18,7 +20,11 @@ struct render_settings {
   bool wireframe = false;     // the cloth as its triangle edges (key W)
   bool show_springs = false;  // the cloth's springs as lines, coloured by family
   bool show_ground = true;    // the ground plane, when the cloth's ground is enabled
+  bool show_wind = false;     // an arrow along the wind beside the cloth, when there is wind
 };
+
+// The colour of a spring family in the springs overlay (for a legend): RGBA, 0..1.
+glm::vec4 spring_family_colour(spring_family family);
 
 class renderer {
  public:

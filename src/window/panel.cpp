@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,8 @@ const char* run_state(const scene& the_scene) {
     return "diverged";
   if (!the_scene.control.running)
     return "paused";
+  if (status.start_hold_left > 0.0)
+    return "starting";
   if (status.behind_real_time)
     return "behind real time";
   return "running";
@@ -151,6 +154,9 @@ void show_readouts(const scene& the_scene) {
   }
   if (state == "paused")
     fixed_lines("paused (Space runs, N steps once)", 1, text_style::coloured, caution_yellow);
+  else if (state == "starting")
+    fixed_lines(format("the initial state: the first step in %.1f s", status.start_hold_left), 1,
+                text_style::coloured, quiet_green);
   else if (state == "behind real time")
     fixed_lines("behind real time: a frame hit its step limit", 1, text_style::coloured,
                 caution_yellow);
@@ -224,7 +230,7 @@ void show_stability_map(scene& the_scene) {
     const std::string label = tick_label(cells[row * stability_map::columns].stiffness);
     label_width = std::max(label_width, ImGui::CalcTextSize(label.c_str()).x);
   }
-  const float cell_height = 14.0f;
+  const float cell_height = 14.0f * ui_scale();
   const ImVec2 corner = ImGui::GetCursorScreenPos();
   const ImVec2 origin = {corner.x + label_width + 6.0f, corner.y + text_height + 2.0f};
   const float cell_width =
@@ -302,7 +308,7 @@ void show_energy(const scene& the_scene) {
     const std::vector<float>& history = the_scene.energy_history()[i];
     const plot_series curve = {times, history, colours[i], names[i]};
     plot_style style;
-    style.height = i == 3 ? 78.0f : 52.0f;
+    style.height = (i == 3 ? 78.0f : 52.0f) * ui_scale();
     style.x_numbers = i == 3;  // the time axis's numbers under the last one
     style.x_unit = "t (s)";
     style.y_unit = "J";
@@ -333,13 +339,13 @@ void show_spring_motion(scene& the_scene, user_actions& actions) {
       {exact_times, exact_values, IM_COL32(240, 240, 240, 255), "exact"},
       {times, motion.simulated(), IM_COL32(255, 150, 60, 255), "simulated"}};
   plot_style style;
-  style.height = 96.0f;
+  style.height = 96.0f * ui_scale();
   style.x_unit = "t (s)";
   style.y_unit = "m";
   style.title = "x (m): simulated (orange), exact (white)";
   line_plot("extension", extension, style);
   const plot_series error = {times, motion.error(), IM_COL32(255, 90, 80, 255), "error"};
-  style.height = 66.0f;
+  style.height = 66.0f * ui_scale();
   style.y_from_zero = true;
   style.title = "error (m): simulated - exact";
   line_plot("error", {&error, 1}, style);
@@ -438,6 +444,8 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool clo
 constexpr double max_spring_time_step = 0.1;  // s, spring and chain
 constexpr double max_cloth_time_step = 0.02;  // s
 constexpr double max_stiffness = 1e5;         // N/m: far past every stability limit
+// N: stronger wind folds the default cloth through itself (there is no self-collision).
+constexpr double max_wind_strength = 20.0;
 
 void edit_single_spring(scene& the_scene, user_actions& actions) {
   single_spring& stage = the_scene.spring_stage;
@@ -579,6 +587,35 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
   ImGui::PopTextWrapPos();
 }
 
+// The height of the lowest pinned particle; with no pins, of the cloth's start (z = 0, model.md).
+double lowest_pinned_height(const spring_mesh& cloth) {
+  const particle_system& particles = cloth.particles();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    if (particles.is_fixed[k])
+      lowest = std::min(lowest, particles.get_position(k).z);
+  }
+  return std::isfinite(lowest) ? lowest : 0.0;
+}
+
+// What the colours of the springs overlay mean (the renderer's colours).
+void show_spring_legend() {
+  constexpr std::array<std::pair<spring_family, const char*>, 3> families = {{
+      {spring_family::structural, "structural"},
+      {spring_family::shear, "shear"},
+      {spring_family::bending, "bending"},
+  }};
+  for (const auto& [family, name] : families) {
+    if (family != spring_family::structural)
+      ImGui::SameLine();
+    const glm::vec4 c = spring_family_colour(family);
+    ImGui::ColorButton(name, {c.r, c.g, c.b, 1.0f},
+                       ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoDragDrop);
+    ImGui::SameLine(0.0f, 4.0f);
+    ImGui::TextUnformatted(name);
+  }
+}
+
 void edit_cloth(scene& the_scene, user_actions& actions) {
   spring_mesh& stage = the_scene.cloth_stage;
   render_settings& display = the_scene.display;
@@ -592,6 +629,7 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
     slider("K_shear (N/m)", p.shear_stiffness, 0.0, max_stiffness, "%.1f", true);
     slider("K_bend (N/m)", p.bending_stiffness, 0.0, max_stiffness, "%.1f", true);
     ImGui::Checkbox("show the springs, coloured by family", &display.show_springs);
+    show_spring_legend();
   }
   if (section("Q7 pins")) {
     int pins = p.pins == pin_mode::corners ? 0 : 1;
@@ -602,7 +640,11 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
   }
   if (section("Q9 ground")) {
     ImGui::Checkbox("ground plane z = z_g", &p.ground_enabled);
-    slider("height z_g (m)", p.ground_height, -3.0, 0.5, "%.2f");
+    // The floor stays below the pins (or, with none, below the flat cloth's start): a floor above
+    // them would be a ceiling.
+    const double highest_ground = lowest_pinned_height(stage) - 0.05;
+    slider("height z_g (m)", p.ground_height, -3.0, highest_ground, "%.2f");
+    p.ground_height = std::min(p.ground_height, highest_ground);
     // mu_g dt <= 1 for every dt of the cloth's slider.
     slider("friction mu_g (1/s)", p.ground_friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
   }
@@ -626,7 +668,7 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
                 effective.bending_stiffness);
   }
   if (section("Q13 wind")) {
-    slider("strength K_w (N)", p.wind_strength, 0.0, 50.0, "%.2f");
+    slider("strength K_w (N)", p.wind_strength, 0.0, max_wind_strength, "%.2f");
     glm::dvec3 direction = p.wind_direction;
     const double min = -1.0, max = 1.0;
     ImGui::SliderScalarN("direction u_w", ImGuiDataType_Double, &direction.x, 3, &min, &max, "%.2f",
@@ -676,17 +718,21 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
 
 }  // namespace
 
+float ui_scale() {
+  return ImGui::GetFontSize() / 13.0f;
+}
+
 float build_control_panel(scene& the_scene, user_actions& actions) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos({0.0f, 0.0f}, ImGuiCond_Always);
-  ImGui::SetNextWindowSize({panel_width, io.DisplaySize.y}, ImGuiCond_Always);
+  ImGui::SetNextWindowSize({panel_width * ui_scale(), io.DisplaySize.y}, ImGuiCond_Always);
   float covered_width = 0.0f;  // collapsed: the scene takes the whole window
   if (ImGui::Begin("clothlab: mass-spring lab", nullptr,
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
-    covered_width = panel_width;
+    covered_width = panel_width * ui_scale();
     show_readouts(the_scene);  // always in sight; the sections below scroll
     ImGui::BeginChild("sections");
-    ImGui::PushItemWidth(-170.0f);  // room for the labels on the right
+    ImGui::PushItemWidth(-170.0f * ui_scale());  // room for the labels on the right
     if (section("Q1 stage and time")) {
       edit_stage(the_scene, actions);
       edit_simulation_control(the_scene.control, actions);

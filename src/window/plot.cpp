@@ -98,7 +98,8 @@ void line_plot(const char* id, std::span<const plot_series> series, const plot_s
     draw.AddText({low.x - 5.0f - ImGui::CalcTextSize(label.c_str()).x, y - text_height / 2},
                  text_colour, label.c_str());
   }
-  const int x_tick_count = std::max(1, static_cast<int>((high.x - low.x) / 70.0f));
+  const int x_tick_count =
+      std::max(1, static_cast<int>((high.x - low.x) / (5.5f * ImGui::GetFontSize())));
   for (const double tick : nice_ticks(x_low, x_high, x_tick_count)) {
     const float x = to_screen(tick, y_low).x;
     draw.AddLine({x, low.y}, {x, high.y}, IM_COL32(60, 64, 76, 255));

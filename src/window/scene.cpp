@@ -2,12 +2,14 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <utility>
 
 #include "gl.hpp"
+#include "render_geometry.hpp"  // chain_floor_height
 #include "stability.hpp"
 
 namespace clothlab {
@@ -94,6 +96,9 @@ void scene::load_model() {
   chain_stage.load_model();
   cloth_stage.load_model();
   status_ = {};
+  view = framed_view();
+  start_hold_seconds_left_ = control.start_hold_seconds;
+  start_hold_frames_left_ = control.start_hold_frames;
   reload_gpu_cloth();
   unsimulated_seconds_ = 0.0;
   restart_energy_history();
@@ -104,6 +109,8 @@ void scene::reset() {
     load_spring_stage();
   else
     with_current_stage([](auto& stage) { stage.load_model(); });
+  if (stage_ == stage_kind::coupled)
+    view = framed_view();  // the chain may have another length
   current_status() = {};
   if (stage_ == stage_kind::cloth)
     reload_gpu_cloth();  // the reset keeps the path
@@ -111,9 +118,20 @@ void scene::reset() {
   restart_energy_history();
 }
 
+camera scene::framed_view() const {
+  if (stage_ != stage_kind::coupled)
+    return camera::default_for(stage_);
+  const particle_system& particles = chain_stage.particles();
+  const glm::vec3 top = particles.get_position(0);
+  const coupled_springs_parameters& p = chain_stage.parameters;
+  const float bottom = chain_floor_height(top.z, chain_stage.springs(), p.dynamics.mass,
+                                          p.dynamics.gravity, p.stiffness);
+  return camera::framing(stage_, top.x, top.y, bottom, top.z + 0.2f);
+}
+
 void scene::select_stage(stage_kind stage) {
   stage_ = stage;
-  view = camera::default_for(stage);
+  view = framed_view();
   unsimulated_seconds_ = 0.0;
   restart_energy_history();
 }
@@ -256,6 +274,17 @@ int scene::steps_for_this_frame(double frame_seconds) {
     return 1;
   }
   if (!control.running) {
+    unsimulated_seconds_ = 0.0;
+    return 0;
+  }
+  if (start_hold_frames_left_ > 0 || start_hold_seconds_left_ > 0.0) {
+    // The initial state in sight for a moment at start (the first frames are the slowest).
+    start_hold_seconds_left_ = std::max(start_hold_seconds_left_ - frame_seconds, 0.0);
+    start_hold_frames_left_ = std::max(start_hold_frames_left_ - 1, 0);
+    status.start_hold_left = std::max(start_hold_seconds_left_, 0.05);
+    if (start_hold_frames_left_ > 0 || start_hold_seconds_left_ > 0.0)
+      return 0;
+    status.start_hold_left = 0.0;
     unsimulated_seconds_ = 0.0;
     return 0;
   }

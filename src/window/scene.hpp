@@ -40,6 +40,10 @@ struct simulation_control {
   // stepping at whichever of these two comes first.
   int max_steps_per_frame = 500;
   double max_simulation_seconds_per_frame = 0.05;  // s of wall-clock time
+  // At start, the initial state stays in sight this long (s of wall-clock time, and at least
+  // start_hold_frames frames) before the first step, so that the student sees the cloth drop.
+  double start_hold_seconds = 0.8;
+  int start_hold_frames = 10;
 };
 
 // Where the cloth is simulated (questions 11 and 12): on the CPU in double precision
@@ -66,6 +70,7 @@ struct run_status {
   std::string divergence_reason;  // what the check found, e.g. a non-finite velocity
   std::string divergence_advice;  // dt omega_max and the integrator's limit when it diverged
   bool behind_real_time = false;  // real_time mode: the last frame hit one of its limits
+  double start_hold_left = 0.0;   // s before the first step at start (0: running or paused)
 };
 
 class scene {
@@ -88,7 +93,10 @@ class scene {
   void reset();                         // the current stage back to its initial state
   void toggle_running() { control.running = !control.running; }
   void single_step();  // pauses, then advances exactly one step
-  void reset_view() { view = camera::default_for(stage_); }
+  void reset_view() { view = framed_view(); }
+  // The stage's view, moved back to take in the whole chain (whose lower masses swing down far
+  // below p0 when the springs are soft).
+  camera framed_view() const;
 
   stage_kind stage() const { return stage_; }
   // True when the next frame would look like the last one unless the user acts: paused or
@@ -146,7 +154,7 @@ class scene {
   bool spring_one_dimensional_start = false;
 
   simulation_control control;
-  render_settings display;
+  render_settings display = {.show_wind = true};
   camera view;
   stability_map stability_explorer;  // question 4: runs on background threads when started
 
@@ -189,6 +197,8 @@ class scene {
   std::array<run_status, 3> status_{};  // indexed by stage_kind
   bool single_step_requested_ = false;
   double unsimulated_seconds_ = 0.0;  // real_time mode: wall-clock time not yet simulated
+  double start_hold_seconds_left_ = 0.0;
+  int start_hold_frames_left_ = 0;
 
   energy_breakdown energy_;
   std::array<std::vector<float>, 4> energy_history_;  // kinetic, gravity, spring, total

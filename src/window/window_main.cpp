@@ -41,8 +41,17 @@ class imgui_session {
   explicit imgui_session(GLFWwindow* window) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;  // write no imgui.ini into the working directory
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // write no imgui.ini into the working directory
     ImGui::StyleColorsDark();
+    // HiDPI: the font made at the screen's scale (crisp, not stretched) and every size with it.
+    float scale_x = 1.0f, scale_y = 1.0f;
+    glfwGetWindowContentScale(window, &scale_x, &scale_y);
+    const float scale = std::clamp(std::max(scale_x, scale_y), 1.0f, 4.0f);
+    ImFontConfig font;
+    font.SizePixels = std::round(13.0f * scale);  // Dear ImGui's default font is 13 px
+    io.Fonts->AddFontDefault(&font);
+    ImGui::GetStyle().ScaleAllSizes(scale);
     ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains to the window's own key callbacks
     ImGui_ImplOpenGL3_Init("#version 330");
   }
@@ -234,6 +243,10 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
 
   scene the_scene(start);
+  if (start.frames > 0) {  // measured from the first frame: no hold of the initial state
+    the_scene.control.start_hold_seconds = 0.0;
+    the_scene.control.start_hold_frames = 0;
+  }
   if (!the_scene.init_renderer(error)) {
     std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
     return 1;
