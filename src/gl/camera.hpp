@@ -26,8 +26,8 @@ struct camera {
   glm::mat4 projection(float aspect) const;  // aspect = width / height
 
   void orbit(float delta_yaw, float delta_pitch);  // left mouse drag
-  void zoom(float factor);                         // wheel: distance *= factor, kept in [0.2, 100]
-  void pan(float dx, float dy);                    // right mouse drag, in units of distance
+  void zoom(float factor);  // wheel: distance *= factor, kept in [0.2, 50] (or the framed distance)
+  void pan(float dx, float dy);  // right mouse drag, in units of distance
 };
 
 }  // namespace clothlab
