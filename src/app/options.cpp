@@ -138,6 +138,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
 
   cloth_parameters& cloth = o.cloth;
   app.add_flag("--headless", o.headless, "Run without a window");
+  app.add_option("--frames", o.frames, "Window: run COUNT frames, print the mean frame time, exit")
+      ->check(CLI::PositiveNumber);
   app.add_option("--stage", stage, "spring | coupled | cloth (default cloth)")
       ->check(CLI::IsMember(stages));
   app.add_option("--backend", backend, "cpu | gpu: the cloth's simulation path (default cpu)")
@@ -190,8 +192,6 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   app.add_option("--sweep-K", sweep_k, "Sweep stiffnesses (cloth: K_struct, ratios kept)");
   app.add_option("--sweep-N", sweep_n, "Sweep grid sizes (cloth) or chain lengths (coupled)");
   app.add_option("--sweep-time", o.sweep_time, "Simulated seconds per sweep cell (2)");
-  app.add_option("--frames", o.frames, "Window: run COUNT frames, print the mean frame time, exit")
-      ->check(CLI::PositiveNumber);
 
   try {
     app.parse(argc, argv);
