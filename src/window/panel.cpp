@@ -31,9 +31,11 @@ float time_step_slider_y = 0.0f;
 // panel, so that nothing below moves when the text changes length or appears. What does not fit
 // ends in "..." and the whole text shows in a tooltip under the mouse.
 enum class text_style { plain, disabled, coloured };
+// width: of the lines, 0 for the panel's width.
 void fixed_lines(const std::string& text, int lines, text_style style = text_style::plain,
-                 const ImVec4& colour = {}) {
-  const float width = std::max(ImGui::GetContentRegionAvail().x, 1.0f);
+                 const ImVec4& colour = {}, float width = 0.0f) {
+  if (width <= 0.0f)
+    width = std::max(ImGui::GetContentRegionAvail().x, 1.0f);
   const auto fits = [&](const std::string& line) {
     return ImGui::CalcTextSize(line.c_str()).x <= width;
   };
@@ -708,9 +710,8 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
     ImGui::SetWindowFontScale(1.5f);
     ImGui::TextColored(warning_red, "diverged at step %ld (t = %.3f s)", status.step, status.time);
     ImGui::SetWindowFontScale(1.0f);
-    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
-    ImGui::TextUnformatted(status.divergence_advice.c_str());
-    ImGui::PopTextWrapPos();
+    // (broken at spaces: a number is never cut)
+    fixed_lines(status.divergence_advice, 4, text_style::plain, {}, ImGui::GetFontSize() * 30.0f);
     ImGui::TextUnformatted("reduce dt or K, or add damping; R resets the stage");
   }
   ImGui::End();
