@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -548,8 +549,16 @@ void renderer::impl::draw_chain(const frame& f, const particle_system& particles
                                 bool show_floor) {
   const glm::vec3 top = particles.get_position(0);
   if (show_floor) {
-    const float floor_height =
+    // The floor is only drawn (nothing collides with it): below the lowest swing of a stable
+    // chain, and lowered under a mass that goes further (a growing, unstable oscillation), so
+    // that no mass disappears through it.
+    float floor_height =
         chain_floor_height(top.z, springs, dynamics.mass, dynamics.gravity, stiffness);
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      const float z = static_cast<float>(particles.get_position(k).z);
+      if (std::isfinite(z))
+        floor_height = std::min(floor_height, z - 2.0f * mass_radius);
+    }
     // Soft shadows on the floor, larger and lighter for masses high above it.
     blobs.clear();
     for (std::size_t k = 0; k < particles.size(); ++k) {

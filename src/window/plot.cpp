@@ -21,6 +21,8 @@ std::vector<double> nice_ticks(double low, double high, int count) {
   }
   for (double tick = std::ceil(low / step) * step; tick <= high + 1e-9 * step; tick += step)
     ticks.push_back(std::abs(tick) < 1e-9 * step ? 0.0 : tick);
+  if (ticks.size() < 2 && count < 64)  // a lone tick gives no scale: a finer step
+    return nice_ticks(low, high, 2 * count);
   return ticks;
 }
 
