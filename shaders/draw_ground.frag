@@ -1,6 +1,8 @@
 #version 330 core
-// A checkered floor of tile_size tiles that fades into the horizon colour far away, with soft
-// round shadows under the masses (blobs). Also draws the cloth's shadow: the same floor, darker.
+// A checkered floor of tile_size tiles that fades into the horizon colour far away. Also draws
+// the cloth's shadow: the same floor, darker. (The round shadows under the masses are drawn over
+// it by draw_blob_shadow: a loop over them here made every ground pixel cost twice as much on
+// a software rasteriser, even with no mass.)
 in vec3 world_position;
 uniform float light_fraction;  // 1 for the ground in the light, less in the cloth's shadow
 uniform float tile_size;  // m
@@ -10,9 +12,6 @@ uniform vec3 horizon_colour;
 uniform vec2 fade_centre;  // m, where the floor is fully visible
 uniform float fade_start;  // m, distance from fade_centre where fading begins
 uniform float fade_end;    // m, distance where only the horizon colour is left
-const int max_blobs = 16;
-uniform int blob_count;
-uniform vec4 blobs[max_blobs];  // x, y (m), radius (m), darkness (0..1)
 out vec4 colour;
 
 // Square wave of period 2 (0 on [0, 1), 1 on [1, 2)), smoothed over one pixel to avoid aliasing.
@@ -30,13 +29,7 @@ void main() {
   // Far away a pixel covers many tiles: show their average instead of moire.
   checker = mix(checker, 0.5, smoothstep(0.3, 1.0, max(pixel.x, pixel.y)));
   vec3 ground = mix(dark_tile_colour, light_tile_colour, checker);
-
-  float shade = 1.0;
-  for (int i = 0; i < blob_count && i < max_blobs; ++i) {
-    float d = length(world_position.xy - blobs[i].xy) / blobs[i].z;
-    shade *= 1.0 - blobs[i].w * (1.0 - smoothstep(0.0, 1.0, d));
-  }
-  ground *= shade * light_fraction;
+  ground *= light_fraction;
 
   float distance_from_centre = length(world_position.xy - fade_centre);
   float fade = smoothstep(fade_start, fade_end, distance_from_centre);

@@ -216,6 +216,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     return option;
   };
   app.add_flag("--headless", o.headless, "Run without a window");
+  app.add_option("--frames", o.frames, "Window: run COUNT frames, print the mean frame time, exit")
+      ->check(CLI::PositiveNumber);
   app.add_option("--stage", stage, "spring | coupled | cloth (default cloth)")
       ->check(CLI::IsMember(stages));
   app.add_option("--backend", backend,

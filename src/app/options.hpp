@@ -39,6 +39,7 @@ struct options {
   std::vector<double> sweep_stiffnesses;  // K of each row, N/m (empty with no grid sizes: around K)
   std::vector<int> sweep_grid_sizes;      // N (cloth) or n (chain) of each row, instead of K
   double sweep_time = 2.0;                // s simulated in each cell
+  long frames = 0;                        // window: run this many frames and exit (0: until closed)
   single_spring_parameters spring;
   coupled_springs_parameters coupled;
   cloth_parameters cloth;

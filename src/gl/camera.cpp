@@ -13,8 +13,9 @@ namespace {
 constexpr float max_pitch = 1.5f;     // rad: never straight above or below (lookAt needs it)
 constexpr float min_distance = 0.2f;  // m
 constexpr float max_distance = 50.0f;
-constexpr float near_plane = 0.05f;  // m
-constexpr float far_plane = 200.0f;  // m
+constexpr float max_framing_distance = 100.0f;  // m: a long soft chain hangs tens of metres
+constexpr float near_plane = 0.05f;             // m
+constexpr float far_plane = 200.0f;             // m
 const glm::vec3 up = {0.0f, 0.0f, 1.0f};
 
 }  // namespace
@@ -48,6 +49,18 @@ camera camera::default_for(stage_kind stage) {
   return view;
 }
 
+camera camera::framing(stage_kind stage, float x, float y, float bottom, float top) {
+  camera view = default_for(stage);
+  const float extent = std::max(top - bottom, 0.0f);
+  // Seen from the side, an extent e fills the view's height at distance (e / 2) / tan(fov / 2).
+  const float needed = extent / 2.0f / 0.75f / std::tan(view.field_of_view / 2.0f);
+  if (needed > view.distance) {
+    view.distance = std::min(needed, max_framing_distance);
+    view.target = {x, y, (top + bottom) / 2.0f};
+  }
+  return view;
+}
+
 glm::vec3 camera::eye() const {
   const glm::vec3 direction = {std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw),
                                std::sin(pitch)};
@@ -70,7 +83,8 @@ void camera::orbit(float delta_yaw, float delta_pitch) {
 void camera::zoom(float factor) {
   if (!(factor > 0.0f))
     return;
-  distance = std::clamp(distance * factor, min_distance, max_distance);
+  // (a framed view may be farther than max_distance: the wheel does not push it farther)
+  distance = std::clamp(distance * factor, min_distance, std::max(max_distance, distance));
 }
 
 void camera::pan(float dx, float dy) {

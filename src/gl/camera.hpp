@@ -17,14 +17,17 @@ struct camera {
   float field_of_view = 0.8f;              // rad, vertical
 
   static camera default_for(stage_kind stage);  // the fixed view of --png and the reset-view key
+  // default_for(stage), moved back (never closer) and re-centred so that the vertical extent
+  // from bottom to top (z, m) at (x, y) fills at most 75 % of the view's height.
+  static camera framing(stage_kind stage, float x, float y, float bottom, float top);
 
   glm::vec3 eye() const;
   glm::mat4 view() const;
   glm::mat4 projection(float aspect) const;  // aspect = width / height
 
   void orbit(float delta_yaw, float delta_pitch);  // left mouse drag
-  void zoom(float factor);                         // wheel: distance *= factor, kept in [0.2, 50]
-  void pan(float dx, float dy);                    // right mouse drag, in units of distance
+  void zoom(float factor);  // wheel: distance *= factor, kept in [0.2, 50] (or the framed distance)
+  void pan(float dx, float dy);  // right mouse drag, in units of distance
 };
 
 }  // namespace clothlab

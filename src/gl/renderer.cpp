@@ -9,7 +9,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -42,12 +44,13 @@ const std::array<glm::vec4, 3> spring_family_colours = {
     glm::vec4{0.05f, 0.60f, 0.20f, 0.80f},  // shear: green
     glm::vec4{0.98f, 0.60f, 0.02f, 0.75f}   // bending: amber
 };
+const glm::vec4 wind_arrow_colour = {0.10f, 0.30f, 0.70f, 1.0f};
+constexpr double wind_arrow_height = 0.35;    // m, above the cloth's highest particle
 constexpr float mass_radius = 0.085f;         // m, as drawn
 constexpr float fixed_point_radius = 0.045f;  // m
 constexpr float pin_radius = 0.022f;          // m
 constexpr int sphere_slices = 24;
 constexpr int sphere_stacks = 16;
-constexpr int max_shadow_blobs = 16;  // as in shaders/draw_ground.frag
 constexpr int floats_per_sphere = 7;  // per instance: centre xyz, radius, colour rgb
 
 void set_uniform(const shader_program& program, const char* name, const glm::mat4& value) {
@@ -122,6 +125,7 @@ struct renderer::impl {
   shader_program ground_program;
   shader_program flat_program;  // lines of the spring stages
   shader_program spheres_program;
+  shader_program blob_shadow_program;  // soft round shadows under the masses
   // The cloth's three passes (lit surface, shadow on the ground, lines), from CPU positions and
   // from the GPU state textures.
   struct cloth_programs {
@@ -146,6 +150,9 @@ struct renderer::impl {
   GLuint coil_vao = 0;
   streamed_buffer coil_points;
 
+  GLuint blob_vao = 0;
+  streamed_buffer blob_instances;  // one vec4 per shadow (blobs)
+
   // The cloth, built again when its grid size or springs change.
   int cloth_grid_size = 0;
   std::size_t cloth_spring_count = 0;
@@ -163,6 +170,7 @@ struct renderer::impl {
   std::vector<float> floats;
   std::vector<float> instances;
   std::vector<glm::vec4> blobs;  // soft round shadows under masses: x, y (m), radius (m), darkness
+                                 // (0..1)
 
   ~impl();
   bool load_programs(std::string& error);
@@ -170,27 +178,30 @@ struct renderer::impl {
   void create_static_buffers();
   void ensure_cloth_buffers(const spring_mesh& cloth);
 
-  frame begin_frame(const camera& view, int width, int height);
+  frame begin_frame(const camera& view, int left, int width, int height);
+  void draw_background(const frame& f);
   void set_ground_uniforms(const shader_program& program, const frame& f, float height,
                            const glm::vec2& centre, float light_fraction);
   void draw_ground(const frame& f, float height, const glm::vec2& centre);
+  void draw_blob_shadows(const frame& f, float height);
   void draw_spheres(const frame& f);
   void draw_chain(const frame& f, const particle_system& particles, std::span<const spring> springs,
                   const dynamics_parameters& dynamics, double stiffness, bool show_floor);
   void draw_cloth(const frame& f, const spring_mesh& cloth, const render_settings& settings,
                   const cloth_programs& programs, GLuint vao);
   void add_sphere(const glm::vec3& centre, float radius, const glm::vec3& colour);
+  void draw_wind_arrow(const frame& f, const spring_mesh& cloth);
 };
 
 renderer::impl::~impl() {
   glDeleteTextures(1, &cloth_texture);
-  const GLuint arrays[] = {empty_vao, ground_vao, sphere_vao,
-                           coil_vao,  cloth_vao,  texture_cloth_vao};
+  const GLuint arrays[] = {empty_vao, ground_vao,        sphere_vao, coil_vao,
+                           cloth_vao, texture_cloth_vao, blob_vao};
   glDeleteVertexArrays(static_cast<GLsizei>(std::size(arrays)), arrays);
   const GLuint buffers[] = {
       ground_vbo,      sphere_vbo,         sphere_ebo,       sphere_instances.id,
       coil_points.id,  cloth_position_vbo, cloth_normal_vbo, cloth_grid_coordinates_vbo,
-      cloth_texel_vbo, cloth_ebo};
+      cloth_texel_vbo, cloth_ebo,          blob_instances.id};
   glDeleteBuffers(static_cast<GLsizei>(std::size(buffers)), buffers);
 }
 
@@ -211,6 +222,7 @@ bool renderer::impl::load_programs(std::string& error) {
       {&texture_cloth.shadow, "draw_flat_from_texture.vert", "draw_ground.frag"},
       {&texture_cloth.lines, "draw_flat_from_texture.vert", "draw_flat.frag"},
       {&spheres_program, "draw_spheres.vert", "draw_lit.frag"},
+      {&blob_shadow_program, "draw_blob_shadow.vert", "draw_blob_shadow.frag"},
   };
   for (const auto& files : programs) {
     if (!files.program->load(files.vertex, files.fragment, error))
@@ -300,6 +312,15 @@ void renderer::impl::create_static_buffers() {
   glEnableVertexAttribArray(position_or_texel_location);
   glVertexAttribPointer(position_or_texel_location, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
 
+  // The shadows under the masses: a square per instance, its corners from gl_VertexID.
+  glGenVertexArrays(1, &blob_vao);
+  glBindVertexArray(blob_vao);
+  glGenBuffers(1, &blob_instances.id);
+  glBindBuffer(GL_ARRAY_BUFFER, blob_instances.id);
+  glEnableVertexAttribArray(position_or_texel_location);
+  glVertexAttribPointer(position_or_texel_location, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glVertexAttribDivisor(position_or_texel_location, 1);
+
   glBindVertexArray(0);
 }
 
@@ -366,8 +387,11 @@ void renderer::impl::ensure_cloth_buffers(const spring_mesh& cloth) {
   glBindVertexArray(0);
 }
 
-frame renderer::impl::begin_frame(const camera& view, int width, int height) {
-  glViewport(0, 0, width, height);
+frame renderer::impl::begin_frame(const camera& view, int left, int width, int height) {
+  // Only this rectangle is cleared and drawn: the scissor keeps the clear inside it.
+  glViewport(left, 0, width, height);
+  glScissor(left, 0, width, height);
+  glEnable(GL_SCISSOR_TEST);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
@@ -375,20 +399,26 @@ frame renderer::impl::begin_frame(const camera& view, int width, int height) {
 
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
   const frame f = {view.projection(aspect) * view.view(), view.eye()};
+  glDepthMask(GL_TRUE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  return f;
+}
 
-  // The background, behind everything: no depth test, no depth write.
-  glDisable(GL_DEPTH_TEST);
+// The sky, after the opaque geometry and before anything blended: it lies on the far plane and
+// is drawn only where nothing else is (depth test, no depth write), so that no pixel is shaded
+// twice (on a software rasteriser the background and the ground are most of a frame's work).
+void renderer::impl::draw_background(const frame& f) {
   glDepthMask(GL_FALSE);
+  glDepthFunc(GL_LEQUAL);
   background_program.use();
   set_uniform(background_program, "inverse_view_projection", glm::inverse(f.view_projection));
   set_uniform(background_program, "horizon_colour", horizon_colour);
   set_uniform(background_program, "sky_colour", sky_colour);
   glBindVertexArray(empty_vao);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  glDepthMask(GL_TRUE);
-  glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  return f;
+  glDepthMask(GL_TRUE);
 }
 
 void renderer::impl::set_ground_uniforms(const shader_program& program, const frame& f,
@@ -408,10 +438,6 @@ void renderer::impl::set_ground_uniforms(const shader_program& program, const fr
   // For the cloth's shadow, whose vertex shader squashes the cloth onto the ground.
   set_uniform(program, "project_onto_ground", 1);
   set_uniform(program, "light_direction", light_direction);
-  const int blob_count = std::min(static_cast<int>(blobs.size()), max_shadow_blobs);
-  set_uniform(program, "blob_count", blob_count);
-  if (blob_count > 0)
-    glUniform4fv(program.uniform("blobs"), blob_count, glm::value_ptr(blobs[0]));
 }
 
 void renderer::impl::draw_ground(const frame& f, float height, const glm::vec2& centre) {
@@ -422,6 +448,77 @@ void renderer::impl::draw_ground(const frame& f, float height, const glm::vec2& 
   glBindVertexArray(ground_vao);
   glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
   glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+// Question 13: an arrow along the wind direction u_w above the cloth, longer for a stronger wind
+// (K_w). A shaft and a head of two crossed triangles, seen from any side.
+void renderer::impl::draw_wind_arrow(const frame& f, const spring_mesh& cloth) {
+  const cloth_parameters& p = cloth.parameters;
+  if (!(p.wind_strength > 0.0) || p.wind_direction == glm::dvec3(0.0))
+    return;
+  const particle_system& particles = cloth.particles();
+  glm::dvec3 centre(0.0);
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    centre += particles.get_position(k);
+    top = std::max(top, particles.get_position(k).z);
+  }
+  centre /= static_cast<double>(std::max<std::size_t>(particles.size(), 1));
+  centre.z = top + wind_arrow_height;
+  const glm::vec3 direction = glm::normalize(glm::vec3(p.wind_direction));
+  const auto length = static_cast<float>(0.3 + 0.03 * std::min(p.wind_strength, 50.0));  // m
+  const glm::vec3 tip = glm::vec3(centre) + 0.5f * length * direction;
+  const glm::vec3 tail = tip - length * direction;
+  const glm::vec3 base = tip - 0.16f * direction;
+  // Two directions across the arrow.
+  const glm::vec3 helper =
+      std::abs(direction.z) < 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 across = 0.07f * glm::normalize(glm::cross(direction, helper));
+  const glm::vec3 across2 = 0.07f * glm::normalize(glm::cross(direction, across));
+  floats.clear();
+  const auto add = [this](const glm::vec3& v) { floats.insert(floats.end(), {v.x, v.y, v.z}); };
+  // The shaft: a thin cross of four lines (lines are 1 px wide).
+  for (const glm::vec3& offset :
+       {glm::vec3(0.0f), 0.1f * across, -0.1f * across, 0.1f * across2, -0.1f * across2}) {
+    add(tail + offset);
+    add(base + offset);
+  }
+  for (const glm::vec3& side : {across, across2}) {
+    add(tip);
+    add(base + side);
+    add(base - side);
+  }
+  coil_points.upload(floats);
+  flat_program.use();
+  set_uniform(flat_program, "view_projection", f.view_projection);
+  set_uniform(flat_program, "project_onto_ground", 0);
+  set_uniform(flat_program, "flat_colour", wind_arrow_colour);
+  glBindVertexArray(coil_vao);
+  glDrawArrays(GL_LINES, 0, 10);
+  glDrawArrays(GL_TRIANGLES, 10, 6);
+}
+
+// Multiplies the ground's colour by each blob's shade: in front of the ground (its polygon
+// offset), behind whatever stands on it, writing no depth.
+void renderer::impl::draw_blob_shadows(const frame& f, float height) {
+  if (blobs.empty())
+    return;
+  blob_instances.upload({glm::value_ptr(blobs[0]), blobs.size() * 4});
+  blob_shadow_program.use();
+  set_uniform(blob_shadow_program, "view_projection", f.view_projection);
+  set_uniform(blob_shadow_program, "ground_height", height);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_DST_COLOR, GL_ZERO);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(2.0f, 4.0f);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glBindVertexArray(blob_vao);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(blobs.size()));
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_BLEND);
 }
 
 void renderer::impl::add_sphere(const glm::vec3& centre, float radius, const glm::vec3& colour) {
@@ -452,8 +549,16 @@ void renderer::impl::draw_chain(const frame& f, const particle_system& particles
                                 bool show_floor) {
   const glm::vec3 top = particles.get_position(0);
   if (show_floor) {
-    const float floor_height =
+    // The floor is only drawn (nothing collides with it): below the lowest swing of a stable
+    // chain, and lowered under a mass that goes further (a growing, unstable oscillation), so
+    // that no mass disappears through it.
+    float floor_height =
         chain_floor_height(top.z, springs, dynamics.mass, dynamics.gravity, stiffness);
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      const float z = static_cast<float>(particles.get_position(k).z);
+      if (std::isfinite(z))
+        floor_height = std::min(floor_height, z - 2.0f * mass_radius);
+    }
     // Soft shadows on the floor, larger and lighter for masses high above it.
     blobs.clear();
     for (std::size_t k = 0; k < particles.size(); ++k) {
@@ -464,6 +569,7 @@ void renderer::impl::draw_chain(const frame& f, const particle_system& particles
       blobs.emplace_back(p.x, p.y, 2.5f * mass_radius + 0.15f * height, 0.5f / (1.0f + height));
     }
     draw_ground(f, floor_height, {top.x, top.y});
+    draw_blob_shadows(f, floor_height);
   }
 
   const coil_shape coil;
@@ -489,6 +595,7 @@ void renderer::impl::draw_chain(const frame& f, const particle_system& particles
                fixed ? fixed_point_colour : mass_colour);
   }
   draw_spheres(f);
+  draw_background(f);
 }
 
 void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
@@ -496,10 +603,8 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
                                 GLuint vao) {
   const bool show_ground = cloth.parameters.ground_enabled && settings.show_ground;
   const auto ground_height = static_cast<float>(cloth.parameters.ground_height);
-  if (show_ground) {
-    blobs.clear();
+  if (show_ground)
     draw_ground(f, ground_height, {0.0f, 0.0f});
-  }
 
   const auto draw_range = [](GLenum mode, const index_range& range) {
     glDrawElements(mode, static_cast<GLsizei>(range.count), GL_UNSIGNED_INT,
@@ -539,6 +644,11 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
 
+  if (settings.show_wind)
+    draw_wind_arrow(f, cloth);
+  draw_background(f);
+  glBindVertexArray(vao);  // the cloth's again, for its lines
+
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   const shader_program& flat = programs.lines;
@@ -576,6 +686,10 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
   glBindVertexArray(0);
 }
 
+glm::vec4 spring_family_colour(spring_family family) {
+  return spring_family_colours[static_cast<std::size_t>(family)];
+}
+
 renderer::renderer() : impl_(new impl) {}
 
 renderer::~renderer() {
@@ -594,21 +708,23 @@ bool renderer::init(std::string& error) {
 }
 
 void renderer::draw(const single_spring& stage, const camera& view, const render_settings& settings,
-                    int width, int height) {
-  const frame f = impl_->begin_frame(view, width, height);
+                    int width, int height, int left) {
+  const frame f = impl_->begin_frame(view, left, width, height);
   impl_->draw_chain(f, stage.particles(), stage.springs(), stage.parameters.dynamics,
                     stage.parameters.stiffness, settings.show_ground);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 void renderer::draw(const coupled_springs& stage, const camera& view,
-                    const render_settings& settings, int width, int height) {
-  const frame f = impl_->begin_frame(view, width, height);
+                    const render_settings& settings, int width, int height, int left) {
+  const frame f = impl_->begin_frame(view, left, width, height);
   impl_->draw_chain(f, stage.particles(), stage.springs(), stage.parameters.dynamics,
                     stage.parameters.stiffness, settings.show_ground);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 void renderer::draw(const spring_mesh& cloth, const camera& view, const render_settings& settings,
-                    int width, int height) {
+                    int width, int height, int left) {
   impl_->ensure_cloth_buffers(cloth);
   // Normals of the current positions (model.md: central differences), not those of the start
   // of the last step.
@@ -623,21 +739,24 @@ void renderer::draw(const spring_mesh& cloth, const camera& view, const render_s
   glBindBuffer(GL_ARRAY_BUFFER, impl_->cloth_normal_vbo);
   glBufferSubData(GL_ARRAY_BUFFER, 0, byte_size(impl_->floats), impl_->floats.data());
 
-  const frame f = impl_->begin_frame(view, width, height);
+  const frame f = impl_->begin_frame(view, left, width, height);
   impl_->draw_cloth(f, cloth, settings, impl_->cpu_cloth, impl_->cloth_vao);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 void renderer::draw_from_textures(GLuint position_texture, GLuint normal_texture,
                                   const spring_mesh& cloth, const camera& view,
-                                  const render_settings& settings, int width, int height) {
+                                  const render_settings& settings, int width, int height,
+                                  int left) {
   impl_->ensure_cloth_buffers(cloth);
-  const frame f = impl_->begin_frame(view, width, height);
+  const frame f = impl_->begin_frame(view, left, width, height);
   glActiveTexture(GL_TEXTURE0 + position_texture_unit);
   glBindTexture(GL_TEXTURE_2D, position_texture);
   glActiveTexture(GL_TEXTURE0 + normal_texture_unit);
   glBindTexture(GL_TEXTURE_2D, normal_texture);
   impl_->draw_cloth(f, cloth, settings, impl_->texture_cloth, impl_->texture_cloth_vao);
   glActiveTexture(GL_TEXTURE0);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 bool save_framebuffer_png(const std::string& path, int width, int height, std::string& error) {

@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include <glm/vec4.hpp>
+
 #include "camera.hpp"
 #include "coupled_springs.hpp"
 #include "gl.hpp"
@@ -18,7 +20,11 @@ struct render_settings {
   bool wireframe = false;     // the cloth as its triangle edges (key W)
   bool show_springs = false;  // the cloth's springs as lines, coloured by family
   bool show_ground = true;    // the ground plane, when the cloth's ground is enabled
+  bool show_wind = false;     // an arrow along the wind beside the cloth, when there is wind
 };
+
+// The colour of a spring family in the springs overlay (for a legend): RGBA, 0..1.
+glm::vec4 spring_family_colour(spring_family family);
 
 class renderer {
  public:
@@ -31,20 +37,22 @@ class renderer {
   // false with an error naming the file (and the compiler's log).
   bool init(std::string& error);
 
-  // Each clears and draws into the currently bound framebuffer, viewport width x height.
+  // Each clears and draws into the currently bound framebuffer, in the width x height rectangle
+  // whose lower-left corner is at (left, 0) (viewport and scissor: the window's part beside the
+  // control panel); the rest of the framebuffer is left as it is.
   void draw(const single_spring& stage, const camera& view, const render_settings& settings,
-            int width, int height);
+            int width, int height, int left = 0);
   void draw(const coupled_springs& stage, const camera& view, const render_settings& settings,
-            int width, int height);
+            int width, int height, int left = 0);
   void draw(const spring_mesh& cloth, const camera& view, const render_settings& settings,
-            int width, int height);
+            int width, int height, int left = 0);
   // The GPU cloth (question 11): the CPU sends a flat N x N grid once; the vertex shader fetches
   // each vertex's position and normal from N x N RGBA32F textures (texel (ku, kv) = particle
   // ku + N kv). Lighting, texture, ground and wireframe as for the CPU cloth; the springs
   // overlay and the pins are taken from `cloth` (its parameters and topology, not its positions).
   void draw_from_textures(GLuint position_texture, GLuint normal_texture, const spring_mesh& cloth,
                           const camera& view, const render_settings& settings, int width,
-                          int height);
+                          int height, int left = 0);
 
  private:
   struct impl;

@@ -90,6 +90,15 @@ window_input glfw_context::poll_events() {
   return gathered;
 }
 
+window_input glfw_context::wait_for_events(double seconds, bool& woke_early) {
+  const double start = glfwGetTime();
+  glfwWaitEventsTimeout(seconds);
+  woke_early = glfwGetTime() - start < seconds;
+  window_input gathered = std::move(input_);
+  input_ = {};
+  return gathered;
+}
+
 bool glfw_context::is_minimised() const {
   return glfwGetWindowAttrib(window_, GLFW_ICONIFIED) == GLFW_TRUE || framebuffer_width() == 0 ||
          framebuffer_height() == 0;
@@ -101,6 +110,10 @@ void glfw_context::wait_events() {
 
 void glfw_context::swap_buffers() {
   glfwSwapBuffers(window_);
+}
+
+void glfw_context::set_vsync(bool on) {
+  glfwSwapInterval(on ? 1 : 0);
 }
 
 void glfw_context::on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {

@@ -40,11 +40,16 @@ class glfw_context final : public gl_context {
 
   // Processes pending events and returns the input gathered since the last call.
   window_input poll_events();
+  // The same, but first sleeps until an event comes or `seconds` pass (a paused, idle window).
+  // woke_early tells which: true when an event ended the wait.
+  window_input wait_for_events(double seconds, bool& woke_early);
   // True while the window is iconified or its framebuffer is 0 x 0: nothing can be drawn.
   bool is_minimised() const;
   // Sleeps until the next event (used while minimised, so that the loop does not spin).
   void wait_events();
   void swap_buffers();
+  // Swaps wait for the screen's refresh (true, the default) or not.
+  void set_vsync(bool on);
 
  private:
   explicit glfw_context(GLFWwindow* window);

@@ -6,9 +6,14 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <string>
+#include <vector>
 
+#include "plot.hpp"
 #include "stability.hpp"  // the core's: step-size limits and divergence (question 4)
 
 namespace clothlab {
@@ -17,6 +22,169 @@ namespace {
 const ImVec4 warning_red = {1.0f, 0.35f, 0.3f, 1.0f};
 const ImVec4 caution_yellow = {1.0f, 0.85f, 0.3f, 1.0f};
 const ImVec4 quiet_green = {0.5f, 0.9f, 0.5f, 1.0f};
+
+// The top of the dt slider this frame, in screen units (every stage has one): the layout log
+// below checks that it does not move when the status changes.
+float time_step_slider_y = 0.0f;
+
+// Text broken into lines at spaces only (a number is never cut), in exactly `lines` lines of the
+// panel, so that nothing below moves when the text changes length or appears. What does not fit
+// ends in "..." and the whole text shows in a tooltip under the mouse.
+enum class text_style { plain, disabled, coloured };
+// width: of the lines, 0 for the panel's width.
+void fixed_lines(const std::string& text, int lines, text_style style = text_style::plain,
+                 const ImVec4& colour = {}, float width = 0.0f) {
+  if (width <= 0.0f)
+    width = std::max(ImGui::GetContentRegionAvail().x, 1.0f);
+  const auto fits = [&](const std::string& line) {
+    return ImGui::CalcTextSize(line.c_str()).x <= width;
+  };
+  std::vector<std::string> shown;
+  std::string line;
+  bool cut = false;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos)
+      end = text.size();
+    const std::string word = text.substr(start, end - start);
+    start = end + 1;
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (line.empty() || fits(longer)) {
+      line = longer;
+      continue;
+    }
+    shown.push_back(line);
+    line = word;
+    if (static_cast<int>(shown.size()) == lines) {
+      cut = true;
+      break;
+    }
+  }
+  if (!cut && !line.empty())
+    shown.push_back(line);
+  if (static_cast<int>(shown.size()) > lines) {
+    shown.resize(static_cast<std::size_t>(lines));
+    cut = true;
+  }
+  if (cut && !shown.empty()) {
+    std::string& last = shown.back();
+    while (!last.empty() && !fits(last + " ...")) {
+      const std::size_t space = last.rfind(' ');
+      last.erase(space == std::string::npos ? 0 : space);
+    }
+    last += last.empty() ? "..." : " ...";
+  }
+  shown.resize(static_cast<std::size_t>(lines));  // empty lines keep the height
+  ImGui::BeginGroup();
+  for (const std::string& l : shown) {
+    switch (style) {
+      case text_style::plain:
+        ImGui::TextUnformatted(l.c_str());
+        break;
+      case text_style::disabled:
+        ImGui::TextDisabled("%s", l.c_str());
+        break;
+      case text_style::coloured:
+        ImGui::TextColored(colour, "%s", l.c_str());
+        break;
+    }
+  }
+  ImGui::EndGroup();
+  if (cut && ImGui::IsItemHovered()) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 35.0f);
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+  }
+}
+
+std::string format(const char* format_string, auto... values) {
+  char text[512];
+  std::snprintf(text, sizeof text, format_string, values...);
+  return text;
+}
+
+// The state of the run in one word, for the status line and the layout log.
+const char* run_state(const scene& the_scene) {
+  const run_status& status = the_scene.status();
+  if (status.diverged)
+    return "diverged";
+  if (!the_scene.control.running)
+    return "paused";
+  if (status.start_hold_left > 0.0)
+    return "starting";
+  if (status.behind_real_time)
+    return "behind real time";
+  return "running";
+}
+
+// The readouts at the top of the panel, always in sight, in a fixed number of lines: the status
+// messages (paused, behind real time, diverged, the cloth's path) take their place without
+// pushing the sliders below.
+constexpr int readout_lines = 5;
+void show_readouts(const scene& the_scene) {
+  const run_status& status = the_scene.status();
+  ImGui::Text("t = %.3f s   step %ld", status.time, status.step);
+  const double time_step = the_scene.current_time_step();
+  ImGui::Text("%.0f steps/s (%.2fx real time)   %.0f frames/s", the_scene.steps_per_second(),
+              the_scene.steps_per_second() * time_step, the_scene.frames_per_second());
+
+  // The cloth's path: G and M act on the cloth whatever stage is shown.
+  const bool on_gpu = the_scene.backend() == cloth_backend::gpu;
+  if (the_scene.stage() == stage_kind::cloth) {
+    if (on_gpu)
+      fixed_lines("cloth on the GPU (float, fragment shaders)   G: CPU", 1, text_style::coloured,
+                  quiet_green);
+    else
+      fixed_lines("cloth on the CPU (double)   G: GPU", 1);
+  } else {
+    fixed_lines(std::string("G, M act on the cloth (stage 3), now on the ") +
+                    backend_name(the_scene.backend()),
+                1, text_style::disabled);
+  }
+
+  // One status line, then one line for the details or the cloth's last switch.
+  const std::string state = run_state(the_scene);
+  if (state == "diverged") {
+    fixed_lines(format("diverged at step %ld (t = %.3f s): R resets", status.step, status.time), 1,
+                text_style::coloured, warning_red);
+    fixed_lines(status.divergence_reason + "; " + status.divergence_advice, 1, text_style::coloured,
+                warning_red);
+    return;
+  }
+  if (state == "paused")
+    fixed_lines("paused (Space runs, N steps once)", 1, text_style::coloured, caution_yellow);
+  else if (state == "starting")
+    fixed_lines(format("the initial state: the first step in %.1f s", status.start_hold_left), 1,
+                text_style::coloured, quiet_green);
+  else if (state == "behind real time")
+    fixed_lines("behind real time: a frame hit its step limit", 1, text_style::coloured,
+                caution_yellow);
+  else
+    fixed_lines("running (Space pauses)", 1, text_style::disabled);
+  fixed_lines(the_scene.backend_message(), 1, text_style::disabled);
+}
+
+// CLOTHLAB_PRINT_LAYOUT=1: prints where the dt slider is whenever it or the run's state changes
+// (the window tests check that status messages move no slider).
+void log_layout(const scene& the_scene) {
+  static const bool asked = std::getenv("CLOTHLAB_PRINT_LAYOUT") != nullptr;
+  if (!asked)
+    return;
+  static std::string last;
+  const std::string line =
+      format("clothlab-window: layout: %s stage, %s, %s, message %s: dt slider at y = %.1f",
+             std::string(stage_name(the_scene.stage())).c_str(), run_state(the_scene),
+             backend_name(the_scene.backend()), the_scene.backend_message().empty() ? "no" : "yes",
+             time_step_slider_y);
+  if (line == last)
+    return;
+  last = line;
+  std::printf("%s\n", line.c_str());
+  std::fflush(stdout);
+}
 
 // Every slider clamps what is typed after Ctrl+click too, so that no value outside its range
 // (a zero time step, a grid of 1) can reach the simulation.
@@ -35,33 +203,6 @@ bool section(const char* title) {
   return ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen);
 }
 
-void show_readouts(const scene& the_scene) {
-  const run_status& status = the_scene.status();
-  ImGui::Text("t = %.3f s   step %ld", status.time, status.step);
-  const double time_step = the_scene.current_time_step();
-  ImGui::Text("%.0f steps/s (%.2fx real time)   %.0f frames/s", the_scene.steps_per_second(),
-              the_scene.steps_per_second() * time_step, the_scene.frames_per_second());
-  if (the_scene.stage() == stage_kind::cloth) {
-    if (the_scene.backend() == cloth_backend::gpu)
-      ImGui::TextColored(quiet_green, "cloth on the GPU (float, fragment shaders)   G: CPU");
-    else
-      ImGui::TextUnformatted("cloth on the CPU (double)   G: GPU");
-  }
-  if (status.diverged) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextColored(warning_red,
-                       "diverged at step %ld (t = %.3f s): reduce dt or K, or add damping. "
-                       "R resets. (%s; %s)",
-                       status.step, status.time, status.divergence_reason.c_str(),
-                       status.divergence_advice.c_str());
-    ImGui::PopTextWrapPos();
-  } else if (!the_scene.control.running) {
-    ImGui::TextColored(caution_yellow, "paused (Space runs, N steps once)");
-  } else if (status.behind_real_time) {
-    ImGui::TextColored(caution_yellow, "behind real time: a frame hit its step limit");
-  }
-}
-
 // Question 4: the map of stable (green) and diverged (red) runs over dt (across) and K (up)
 // around the current values (the outlined centre cell); a white dot marks the cells that the
 // theory (stability.hpp) predicts unstable.
@@ -75,16 +216,47 @@ void show_stability_map(scene& the_scene) {
     ImGui::SameLine();
     if (ImGui::Button("Stop"))
       map.cancel();
-    ImGui::ProgressBar(static_cast<float>(map.fraction_done()), {-1.0f, 0.0f});
   }
+  if (map.started())  // stays when done, so that the map below does not move
+    ImGui::ProgressBar(static_cast<float>(map.fraction_done()), {-1.0f, 0.0f});
   if (!map.started() || map.stage() != the_scene.stage())
     return;
 
   const std::vector<sweep_cell> cells = map.cells();
-  const float cell_width = ImGui::GetContentRegionAvail().x / stability_map::columns;
-  const float cell_height = 14.0f;
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  if (cells.size() < static_cast<std::size_t>(stability_map::columns * stability_map::rows))
+    return;
+  // Axes: K (N/m) of every other row on the left, dt (s) of every third column below.
+  const float text_height = ImGui::GetTextLineHeight();
+  float label_width = ImGui::CalcTextSize("K (N/m)").x;
+  for (int row = 0; row < stability_map::rows; row += 2) {
+    const std::string label = tick_label(cells[row * stability_map::columns].stiffness);
+    label_width = std::max(label_width, ImGui::CalcTextSize(label.c_str()).x);
+  }
+  const float cell_height = 14.0f * ui_scale();
+  const ImVec2 corner = ImGui::GetCursorScreenPos();
+  const ImVec2 origin = {corner.x + label_width + 6.0f, corner.y + text_height + 2.0f};
+  const float cell_width =
+      (ImGui::GetContentRegionAvail().x - label_width - 6.0f) / stability_map::columns;
   ImDrawList& draw = *ImGui::GetWindowDrawList();
+  const ImU32 text_colour = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+  draw.AddText(corner, text_colour, "K (N/m)");
+  for (int row = 0; row < stability_map::rows; row += 2) {
+    const std::string label = tick_label(cells[row * stability_map::columns].stiffness);
+    const float y =
+        origin.y + (static_cast<float>(stability_map::rows - 1 - row) + 0.5f) * cell_height;
+    draw.AddText({origin.x - 4.0f - ImGui::CalcTextSize(label.c_str()).x, y - text_height / 2},
+                 text_colour, label.c_str());
+  }
+  const float bottom = origin.y + stability_map::rows * cell_height;
+  draw.AddText({corner.x, bottom + 2.0f}, text_colour, "dt (s)");
+  for (int column = 0; column < stability_map::columns; column += 3) {
+    const std::string label = tick_label(cells[column].time_step);
+    const float half = ImGui::CalcTextSize(label.c_str()).x / 2;
+    const float x = origin.x + (static_cast<float>(column) + 0.5f) * cell_width;
+    draw.AddLine({x, bottom}, {x, bottom + 3.0f}, text_colour);
+    draw.AddText({std::max(x - half, origin.x), bottom + 3.0f}, text_colour, label.c_str());
+  }
+
   const sweep_cell* hovered = nullptr;
   for (std::size_t index = 0; index < cells.size(); ++index) {
     const sweep_cell& cell = cells[index];
@@ -105,7 +277,8 @@ void show_stability_map(scene& the_scene) {
     if (ImGui::IsMouseHoveringRect(low, high))
       hovered = &cell;
   }
-  ImGui::Dummy({cell_width * stability_map::columns, cell_height * stability_map::rows});
+  ImGui::Dummy({ImGui::GetContentRegionAvail().x,
+                text_height * 2 + 5.0f + cell_height * stability_map::rows});
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled(
       "dt across (x sqrt 2 per cell), K up (x 10^1/4), the outlined centre is "
@@ -123,22 +296,73 @@ void show_stability_map(scene& the_scene) {
   }
 }
 
-// Question 4: what the integrator does with the energy (energy.hpp), frame after frame.
+// Question 4: what the integrator does with the energy (energy.hpp), frame after frame, against
+// the simulated time; each curve on its own scale (the shape is the lesson: growth, oscillation,
+// decay), the four over one time axis.
 void show_energy(const scene& the_scene) {
   const energy_breakdown& energy = the_scene.energy();
   const double now[4] = {energy.kinetic, energy.gravity, energy.spring, energy.total};
   constexpr const char* names[4] = {"kinetic", "gravity", "spring", "total"};
-  const float heights[4] = {34.0f, 34.0f, 34.0f, 56.0f};
+  constexpr ImU32 colours[4] = {IM_COL32(110, 190, 255, 255), IM_COL32(150, 220, 140, 255),
+                                IM_COL32(255, 190, 90, 255), IM_COL32(240, 240, 240, 255)};
+  const std::vector<float>& times = the_scene.energy_times();
   for (std::size_t i = 0; i < 4; ++i) {
     const std::vector<float>& history = the_scene.energy_history()[i];
-    char overlay[64];
-    std::snprintf(overlay, sizeof overlay, "%s %.5g J", names[i], now[i]);
-    ImGui::PushID(static_cast<int>(i));
-    // Each curve on its own scale: the shape (growth, oscillation, decay) is the lesson.
-    ImGui::PlotLines("##energy", history.data(), static_cast<int>(history.size()), 0, overlay,
-                     FLT_MAX, FLT_MAX, {ImGui::GetContentRegionAvail().x, heights[i]});
-    ImGui::PopID();
+    const plot_series curve = {times, history, colours[i], names[i]};
+    plot_style style;
+    style.height = (i == 3 ? 78.0f : 52.0f) * ui_scale();
+    style.x_numbers = i == 3;  // the time axis's numbers under the last one
+    style.x_unit = "t (s)";
+    style.y_unit = "J";
+    style.title = format("%s %.5g J", names[i], now[i]);
+    style.min_label_width = ImGui::CalcTextSize("-0.000").x;
+    line_plot(names[i], {&curve, 1}, style);
   }
+}
+
+// Question 2: the spring's extension along its rest direction, simulated and exact (the 1D
+// damped oscillator, spring_motion.hpp), and their difference.
+void show_spring_motion(scene& the_scene, user_actions& actions) {
+  actions.reset |= ImGui::Checkbox("1D start: v1 along the spring (resets)",
+                                   &the_scene.spring_one_dimensional_start);
+  const spring_motion& motion = the_scene.motion();
+  const std::vector<float>& times = motion.times();
+  // The exact solution as a smooth curve over the plotted time, not only at the frames.
+  std::vector<float> exact_times, exact_values;
+  if (!times.empty()) {
+    constexpr int samples = 300;
+    for (int i = 0; i <= samples; ++i) {
+      const double t = times.front() + double(times.back() - times.front()) * i / samples;
+      exact_times.push_back(static_cast<float>(t));
+      exact_values.push_back(static_cast<float>(motion.exact(t)));
+    }
+  }
+  const plot_series extension[] = {
+      {exact_times, exact_values, IM_COL32(240, 240, 240, 255), "exact"},
+      {times, motion.simulated(), IM_COL32(255, 150, 60, 255), "simulated"}};
+  plot_style style;
+  style.height = 96.0f * ui_scale();
+  style.x_unit = "t (s)";
+  style.y_unit = "m";
+  style.title = "x (m): simulated (orange), exact (white)";
+  line_plot("extension", extension, style);
+  const plot_series error = {times, motion.error(), IM_COL32(255, 90, 80, 255), "error"};
+  style.height = 66.0f * ui_scale();
+  style.y_from_zero = true;
+  style.title = "error (m): simulated - exact";
+  line_plot("error", {&error, 1}, style);
+  fixed_lines(format("largest |error| %.3g m since t = %.2f s (the reset or the last change of "
+                     "K, mu, m, g0)",
+                     motion.largest_error(), motion.start_time()),
+              2, text_style::disabled);
+  if (the_scene.spring_one_dimensional_start)
+    fixed_lines("1D start: the motion is along the spring, the 1D model's exactly", 2,
+                text_style::disabled);
+  else
+    fixed_lines(
+        "x along the rest direction; the mass also swings sideways (v1 is across the "
+        "spring), which the 1D model leaves out: tick 1D start for the integrator alone",
+        2, text_style::disabled);
 }
 
 void edit_stage(scene& the_scene, user_actions& actions) {
@@ -189,15 +413,15 @@ void show_stability(const stability_estimate& estimate) {
   ImGui::PushStyleColor(ImGuiCol_PlotHistogram, unstable ? warning_red : quiet_green);
   ImGui::ProgressBar(static_cast<float>(std::min(estimate.ratio, 1.0)), {-1.0f, 0.0f}, overlay);
   ImGui::PopStyleColor();
-  ImGui::PushTextWrapPos(0.0f);
-  ImGui::TextDisabled("%s", estimate.explanation.c_str());
-  ImGui::PopTextWrapPos();
+  fixed_lines(estimate.explanation, 3, text_style::disabled);
 }
 
 // dt, mu, m, g0 and the integrator, which every stage has (model.md, "Common"). While the cloth
 // runs on the GPU, the integrators the GPU does not have are offered greyed out.
-void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool on_gpu = false) {
+void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool cloth = false,
+                   bool on_gpu = false) {
   slider("dt (s)", dynamics.time_step, 1e-4, max_time_step, "%.5f", true);
+  time_step_slider_y = ImGui::GetItemRectMin().y;
   // mu dt stays at most 1 (the damping factor 1 - mu dt must not turn negative) for every dt
   // of the slider above.
   slider("damping mu (1/s)", dynamics.damping, 0.0, 1.0 / max_time_step, "%.3f");
@@ -215,23 +439,25 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool on_
     }
     ImGui::EndCombo();
   }
-  if (on_gpu) {
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextDisabled("the GPU runs semi-implicit and explicit Euler; the others: G for the CPU");
-    ImGui::PopTextWrapPos();
-  }
+  if (cloth)  // the same line on both paths, so that switching moves nothing
+    fixed_lines("GPU path: semi-implicit and explicit Euler only", 1, text_style::disabled);
 }
 
 constexpr double max_spring_time_step = 0.1;  // s, spring and chain
 constexpr double max_cloth_time_step = 0.02;  // s
 constexpr double max_stiffness = 1e5;         // N/m: far past every stability limit
+// N: stronger wind folds the default cloth through itself (there is no self-collision).
+constexpr double max_wind_strength = 20.0;
 
-void edit_single_spring(single_spring& stage) {
+void edit_single_spring(scene& the_scene, user_actions& actions) {
+  single_spring& stage = the_scene.spring_stage;
   if (section("Q2-Q4 spring: dt, K, damping")) {
     edit_dynamics(stage.parameters.dynamics, max_spring_time_step);
     slider("stiffness K (N/m)", stage.parameters.stiffness, 0.0, max_stiffness, "%.2f", true);
     show_stability(estimate_stability(stage));
   }
+  if (section("Q2 motion: extension x(t), exact solution, error"))
+    show_spring_motion(the_scene, actions);
 }
 
 void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
@@ -245,42 +471,110 @@ void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
   }
 }
 
+// Question 11: the three state textures, side by side, texel (ku, kv) = particle ku + N kv; the
+// values of the texel under the mouse in a tooltip.
+void show_state_textures(scene& the_scene) {
+  const state_images& images = the_scene.state_textures();
+  fixed_lines(the_scene.state_textures_from_gpu()
+                  ? "GPU path: its state textures, read back"
+                  : "CPU path: its arrays, laid out as the GPU textures",
+              1);
+  constexpr std::array<std::pair<state_images::which, const char*>, 3> shown = {{
+      {state_images::position, "position"},
+      {state_images::velocity, "velocity"},
+      {state_images::normal, "normal"},
+  }};
+  const float spacing = ImGui::GetStyle().ItemSpacing.x;
+  const float side = std::floor((ImGui::GetContentRegionAvail().x - 2 * spacing) / 3);
+  for (const auto& [image, name] : shown) {
+    if (image != state_images::position)
+      ImGui::SameLine();
+    ImGui::BeginGroup();
+    ImGui::TextUnformatted(name);
+    const ImVec2 top_left = ImGui::GetCursorScreenPos();
+    // Texel row kv = 0 at the top, as in the texture's memory.
+    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(images.texture(image))),
+                 {side, side});
+    if (ImGui::IsItemHovered() && images.grid_size() > 0) {
+      const ImVec2 mouse = ImGui::GetIO().MousePos;
+      const int n = images.grid_size();
+      const int ku = std::clamp(
+          static_cast<int>((mouse.x - top_left.x) / side * static_cast<float>(n)), 0, n - 1);
+      const int kv = std::clamp(
+          static_cast<int>((mouse.y - top_left.y) / side * static_cast<float>(n)), 0, n - 1);
+      const std::array<double, 3> value = images.texel(image, ku, kv);
+      ImGui::BeginTooltip();
+      ImGui::Text("texel (%d, %d) = particle %d", ku, kv, ku + n * kv);
+      ImGui::Text("%s = (%.4g, %.4g, %.4g)", name, value[0], value[1], value[2]);
+      ImGui::EndTooltip();
+    }
+    ImGui::EndGroup();
+  }
+  for (const auto& [image, name] : shown)
+    fixed_lines(std::string(name) + ": " + images.legend(image), 2, text_style::disabled);
+}
+
+// Question 12: which OpenGL renderer draws and runs the GPU path.
+void show_renderer(const scene& the_scene) {
+  const std::string& name = the_scene.renderer_name();
+  fixed_lines("OpenGL renderer: " + name, 1, text_style::disabled);
+  const bool software = name.find("llvmpipe") != std::string::npos ||
+                        name.find("softpipe") != std::string::npos ||
+                        name.find("SWR") != std::string::npos;
+  if (software)
+    fixed_lines(name.substr(0, name.find(' ')) + ": software, the GPU is the CPU here", 1,
+                text_style::coloured, caution_yellow);
+  else
+    fixed_lines("a hardware GPU", 1, text_style::disabled);
+}
+
 // Questions 11 and 12: which path runs the cloth, the switch, and both paths' speeds.
-void show_gpu_path(const scene& the_scene, user_actions& actions) {
+void show_gpu_path(scene& the_scene, user_actions& actions) {
   const bool on_gpu = the_scene.backend() == cloth_backend::gpu;
   if (ImGui::RadioButton("CPU (double)", !on_gpu) && on_gpu)
     actions.switch_cloth_backend = true;
   ImGui::SameLine();
   if (ImGui::RadioButton("GPU (float, fragment shaders)", on_gpu) && !on_gpu)
     actions.switch_cloth_backend = true;
-  ImGui::PushTextWrapPos(0.0f);
-  if (std::string why; !on_gpu && !the_scene.gpu_can_run(why))
-    ImGui::TextColored(caution_yellow, "Not on the GPU: %s", why.c_str());
-  if (!the_scene.backend_message().empty())
-    ImGui::TextDisabled("%s", the_scene.backend_message().c_str());
+  // Fixed lines: a hint, a measurement or a refusal appearing moves nothing below.
+  if (std::string why; !the_scene.gpu_can_run(why))
+    fixed_lines("Not on the GPU: " + why, 2, text_style::coloured, caution_yellow);
+  else
+    fixed_lines("", 2);
 
   ImGui::Text("live: %s, %.0f steps/s (stepping alone)", backend_name(the_scene.backend()),
               the_scene.stepping_rate());
+  show_renderer(the_scene);
   const std::string measure_label =
       "Measure both (M): " + std::to_string(steps_per_backend_measurement) +
       " steps each, on copies";
   if (ImGui::Button(measure_label.c_str()))
     actions.measure_backends = true;
   const backend_comparison& comparison = the_scene.comparison();
-  if (comparison.measured) {
-    if (comparison.gpu_steps_per_second > 0.0) {
-      ImGui::Text("N = %d   steps/s CPU: %.0f   GPU: %.0f   (GPU/CPU = %.2f x)",
-                  comparison.grid_size, comparison.cpu_steps_per_second,
-                  comparison.gpu_steps_per_second,
-                  comparison.gpu_steps_per_second / comparison.cpu_steps_per_second);
-    } else {
-      ImGui::Text("N = %d   steps/s CPU: %.0f   GPU: -", comparison.grid_size,
-                  comparison.cpu_steps_per_second);
-      ImGui::TextColored(warning_red, "%s", comparison.gpu_error.c_str());
-    }
-    if (comparison.grid_size != the_scene.cloth_stage.grid_size())
-      ImGui::TextDisabled("measured for another N: measure again");
+  if (!comparison.measured) {
+    fixed_lines("N = -   steps/s CPU: -   GPU: -   (not measured yet)", 1, text_style::disabled);
+    fixed_lines("", 1);
+  } else if (comparison.gpu_steps_per_second > 0.0) {
+    fixed_lines(
+        format("N = %d   steps/s CPU: %.0f   GPU: %.0f   (GPU/CPU = %.2f x)", comparison.grid_size,
+               comparison.cpu_steps_per_second, comparison.gpu_steps_per_second,
+               comparison.gpu_steps_per_second / comparison.cpu_steps_per_second),
+        1);
+  } else {
+    fixed_lines(format("N = %d   steps/s CPU: %.0f   GPU: -", comparison.grid_size,
+                       comparison.cpu_steps_per_second),
+                1);
   }
+  if (comparison.measured) {
+    if (comparison.gpu_steps_per_second <= 0.0)
+      fixed_lines(comparison.gpu_error, 1, text_style::coloured, warning_red);
+    else if (comparison.grid_size != the_scene.cloth_stage.grid_size())
+      fixed_lines("measured for another N: measure again", 1, text_style::disabled);
+    else
+      fixed_lines("", 1);
+  }
+  show_state_textures(the_scene);
+  ImGui::PushTextWrapPos(0.0f);
   // BEGIN TEACHER: the answer to question 11, which the student copy leaves to the student
   ImGui::TextDisabled(
       "Q11: every particle is one texel of N x N float (RGBA32F) textures: positions (w: "
@@ -295,12 +589,41 @@ void show_gpu_path(const scene& the_scene, user_actions& actions) {
   ImGui::PopTextWrapPos();
 }
 
+// The height of the lowest pinned particle; with no pins, of the cloth's start (z = 0, model.md).
+double lowest_pinned_height(const spring_mesh& cloth) {
+  const particle_system& particles = cloth.particles();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    if (particles.is_fixed[k])
+      lowest = std::min(lowest, particles.get_position(k).z);
+  }
+  return std::isfinite(lowest) ? lowest : 0.0;
+}
+
+// What the colours of the springs overlay mean (the renderer's colours).
+void show_spring_legend() {
+  constexpr std::array<std::pair<spring_family, const char*>, 3> families = {{
+      {spring_family::structural, "structural"},
+      {spring_family::shear, "shear"},
+      {spring_family::bending, "bending"},
+  }};
+  for (const auto& [family, name] : families) {
+    if (family != spring_family::structural)
+      ImGui::SameLine();
+    const glm::vec4 c = spring_family_colour(family);
+    ImGui::ColorButton(name, {c.r, c.g, c.b, 1.0f},
+                       ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoDragDrop);
+    ImGui::SameLine(0.0f, 4.0f);
+    ImGui::TextUnformatted(name);
+  }
+}
+
 void edit_cloth(scene& the_scene, user_actions& actions) {
   spring_mesh& stage = the_scene.cloth_stage;
   render_settings& display = the_scene.display;
   cloth_parameters& p = stage.parameters;
   if (section("Q4 dt, damping")) {
-    edit_dynamics(p.dynamics, max_cloth_time_step, the_scene.backend() == cloth_backend::gpu);
+    edit_dynamics(p.dynamics, max_cloth_time_step, true, the_scene.backend() == cloth_backend::gpu);
     show_stability(estimate_stability(stage));
   }
   if (section("Q8 springs: three stiffnesses")) {
@@ -308,6 +631,7 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
     slider("K_shear (N/m)", p.shear_stiffness, 0.0, max_stiffness, "%.1f", true);
     slider("K_bend (N/m)", p.bending_stiffness, 0.0, max_stiffness, "%.1f", true);
     ImGui::Checkbox("show the springs, coloured by family", &display.show_springs);
+    show_spring_legend();
   }
   if (section("Q7 pins")) {
     int pins = p.pins == pin_mode::corners ? 0 : 1;
@@ -318,7 +642,11 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
   }
   if (section("Q9 ground")) {
     ImGui::Checkbox("ground plane z = z_g", &p.ground_enabled);
-    slider("height z_g (m)", p.ground_height, -3.0, 0.5, "%.2f");
+    // The floor stays below the pins (or, with none, below the flat cloth's start): a floor above
+    // them would be a ceiling.
+    const double highest_ground = lowest_pinned_height(stage) - 0.05;
+    slider("height z_g (m)", p.ground_height, -3.0, highest_ground, "%.2f");
+    p.ground_height = std::min(p.ground_height, highest_ground);
     // mu_g dt <= 1 for every dt of the cloth's slider.
     slider("friction mu_g (1/s)", p.ground_friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
   }
@@ -342,7 +670,7 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
                 effective.bending_stiffness);
   }
   if (section("Q13 wind")) {
-    slider("strength K_w (N)", p.wind_strength, 0.0, 50.0, "%.2f");
+    slider("strength K_w (N)", p.wind_strength, 0.0, max_wind_strength, "%.2f");
     glm::dvec3 direction = p.wind_direction;
     const double min = -1.0, max = 1.0;
     ImGui::SliderScalarN("direction u_w", ImGuiDataType_Double, &direction.x, 3, &min, &max, "%.2f",
@@ -382,9 +710,8 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
     ImGui::SetWindowFontScale(1.5f);
     ImGui::TextColored(warning_red, "diverged at step %ld (t = %.3f s)", status.step, status.time);
     ImGui::SetWindowFontScale(1.0f);
-    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.0f);
-    ImGui::TextUnformatted(status.divergence_advice.c_str());
-    ImGui::PopTextWrapPos();
+    // (broken at spaces: a number is never cut)
+    fixed_lines(status.divergence_advice, 4, text_style::plain, {}, ImGui::GetFontSize() * 30.0f);
     ImGui::TextUnformatted("reduce dt or K, or add damping; R resets the stage");
   }
   ImGui::End();
@@ -392,24 +719,28 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
 
 }  // namespace
 
+float ui_scale() {
+  return ImGui::GetFontSize() / 13.0f;
+}
+
 float build_control_panel(scene& the_scene, user_actions& actions) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos({0.0f, 0.0f}, ImGuiCond_Always);
-  ImGui::SetNextWindowSize({panel_width, io.DisplaySize.y}, ImGuiCond_Always);
+  ImGui::SetNextWindowSize({panel_width * ui_scale(), io.DisplaySize.y}, ImGuiCond_Always);
   float covered_width = 0.0f;  // collapsed: the scene takes the whole window
   if (ImGui::Begin("clothlab: mass-spring lab", nullptr,
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
-    covered_width = panel_width;
+    covered_width = panel_width * ui_scale();
     show_readouts(the_scene);  // always in sight; the sections below scroll
     ImGui::BeginChild("sections");
-    ImGui::PushItemWidth(-170.0f);  // room for the labels on the right
+    ImGui::PushItemWidth(-170.0f * ui_scale());  // room for the labels on the right
     if (section("Q1 stage and time")) {
       edit_stage(the_scene, actions);
       edit_simulation_control(the_scene.control, actions);
     }
     switch (the_scene.stage()) {
       case stage_kind::spring:
-        edit_single_spring(the_scene.spring_stage);
+        edit_single_spring(the_scene, actions);
         break;
       case stage_kind::coupled:
         edit_coupled_springs(the_scene.chain_stage, actions);
@@ -431,6 +762,7 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
 
   if (the_scene.status().diverged)
     show_divergence_banner(the_scene.status(), covered_width);
+  log_layout(the_scene);
   return covered_width;
 }
 

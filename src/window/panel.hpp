@@ -25,7 +25,12 @@ struct user_actions {
 };
 
 inline constexpr int steps_per_backend_measurement = 200;  // question 12's "measure both"
-inline constexpr float panel_width = 410.0f;  // in ImGui's (screen) units, at the window's left
+// In ImGui's (screen) units at the default 13 px font, at the window's left; scaled with the
+// font on HiDPI screens (ui_scale).
+inline constexpr float panel_width = 410.0f;
+
+// The size of the panel's things relative to the default font: 1, or the screen's scale.
+float ui_scale();
 
 // Builds this frame's panel at the window's left. Parameters and the simulation control are
 // edited in place in `the_scene`; everything else comes back in `actions`. Returns the width the

@@ -1,11 +1,15 @@
 #include "scene.hpp"
 
+#include <glm/geometric.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <utility>
 
 #include "gl.hpp"
+#include "render_geometry.hpp"  // chain_floor_height
 #include "stability.hpp"
 
 namespace clothlab {
@@ -35,23 +39,78 @@ scene::scene(const options& start)
       stage_(start.stage) {}
 
 bool scene::init_renderer(std::string& error) {
+  if (const GLubyte* name = glGetString(GL_RENDERER); name != nullptr)
+    renderer_name_ = reinterpret_cast<const char*>(name);
   return renderer_.init(error);
+}
+
+// Question 11: positions and velocities are the cloth's (on the GPU path, read back from its
+// textures once per frame); normals are read from the GPU's normal texture, or computed on the
+// CPU as the CPU path does (central differences, model.md).
+const state_images& scene::state_textures() {
+  const long step = status_[static_cast<int>(stage_kind::cloth)].step;
+  const bool from_gpu = backend_ == cloth_backend::gpu && gpu_.is_loaded() &&
+                        gpu_.grid_size() == cloth_stage.grid_size();
+  const int n = cloth_stage.grid_size();
+  if (step == state_images_step_ && from_gpu == state_images_from_gpu_ &&
+      state_images_.grid_size() == n)
+    return state_images_;
+  const particle_system& particles = cloth_stage.particles();
+  const auto texels = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+  normal_scratch_.resize(3 * texels);
+  if (from_gpu) {
+    texel_scratch_.resize(4 * texels);
+    glBindTexture(GL_TEXTURE_2D, gpu_.normal_texture());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texel_scratch_.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    for (std::size_t k = 0; k < texels; ++k) {
+      for (std::size_t c = 0; c < 3; ++c)
+        normal_scratch_[3 * k + c] = texel_scratch_[4 * k + c];
+    }
+  } else {
+    compute_vertex_normals(n, particles.position, normal_scratch_);
+  }
+  state_images_.update(n, particles.position, particles.velocity, normal_scratch_);
+  state_images_step_ = step;
+  state_images_from_gpu_ = from_gpu;
+  return state_images_;
 }
 
 // ---- Initialisation ---------------------------------------------------------------------
 
-void scene::load_model() {
+// Stage 1, with the 1D start of question 2 when asked: only the component of v1 along the
+// spring (p1 - p0) is kept.
+void scene::load_spring_stage() {
   spring_stage.load_model();
+  if (!spring_one_dimensional_start)
+    return;
+  particle_system& particles = spring_stage.particles();
+  const glm::dvec3 axis = particles.get_position(1) - particles.get_position(0);
+  const glm::dvec3 v = particles.get_velocity(1);
+  particles.set_velocity(1, glm::dot(v, axis) / glm::dot(axis, axis) * axis);
+}
+
+void scene::load_model() {
+  load_spring_stage();
   chain_stage.load_model();
   cloth_stage.load_model();
   status_ = {};
+  view = framed_view();
+  start_hold_seconds_left_ = control.start_hold_seconds;
+  start_hold_frames_left_ = control.start_hold_frames;
   reload_gpu_cloth();
   unsimulated_seconds_ = 0.0;
   restart_energy_history();
 }
 
 void scene::reset() {
-  with_current_stage([](auto& stage) { stage.load_model(); });
+  if (stage_ == stage_kind::spring)
+    load_spring_stage();
+  else
+    with_current_stage([](auto& stage) { stage.load_model(); });
+  if (stage_ == stage_kind::coupled)
+    view = framed_view();  // the chain may have another length
   current_status() = {};
   if (stage_ == stage_kind::cloth)
     reload_gpu_cloth();  // the reset keeps the path
@@ -59,9 +118,20 @@ void scene::reset() {
   restart_energy_history();
 }
 
+camera scene::framed_view() const {
+  if (stage_ != stage_kind::coupled)
+    return camera::default_for(stage_);
+  const particle_system& particles = chain_stage.particles();
+  const glm::vec3 top = particles.get_position(0);
+  const coupled_springs_parameters& p = chain_stage.parameters;
+  const float bottom = chain_floor_height(top.z, chain_stage.springs(), p.dynamics.mass,
+                                          p.dynamics.gravity, p.stiffness);
+  return camera::framing(stage_, top.x, top.y, bottom, top.z + 0.2f);
+}
+
 void scene::select_stage(stage_kind stage) {
   stage_ = stage;
-  view = camera::default_for(stage);
+  view = framed_view();
   unsimulated_seconds_ = 0.0;
   restart_energy_history();
 }
@@ -207,6 +277,17 @@ int scene::steps_for_this_frame(double frame_seconds) {
     unsimulated_seconds_ = 0.0;
     return 0;
   }
+  if (start_hold_frames_left_ > 0 || start_hold_seconds_left_ > 0.0) {
+    // The initial state in sight for a moment at start (the first frames are the slowest).
+    start_hold_seconds_left_ = std::max(start_hold_seconds_left_ - frame_seconds, 0.0);
+    start_hold_frames_left_ = std::max(start_hold_frames_left_ - 1, 0);
+    status.start_hold_left = std::max(start_hold_seconds_left_, 0.05);
+    if (start_hold_frames_left_ > 0 || start_hold_seconds_left_ > 0.0)
+      return 0;
+    status.start_hold_left = 0.0;
+    unsimulated_seconds_ = 0.0;
+    return 0;
+  }
   switch (control.mode) {
     case time_mode::steps_per_frame:
       return control.steps_per_frame;
@@ -298,6 +379,7 @@ void scene::count_step(double time_step) {
   run_status& status = current_status();
   ++status.step;
   status.time += time_step;
+  ++steps_taken_;
 }
 
 void scene::report_divergence(divergence_status check) {
@@ -319,39 +401,40 @@ void scene::report_divergence(divergence_status check) {
   }
 }
 
-// Display: the renderer reads the state and never changes it.
+// Display: the renderer reads the state and never changes it. It draws straight into the
+// window's framebuffer, in the part right of the panel (viewport and scissor at x = left).
 void scene::draw(int left, int width, int height) {
-  const bool offset = left > 0 && framebuffer_.bind(width, height);
-  if (!offset) {
-    width += left;  // the whole window
-    left = 0;
+  // Under the panel (drawn over it, nearly opaque): the scene's background colour.
+  glViewport(0, 0, left + width, height);
+  if (left > 0) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, left, height);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
   }
   if (status().diverged) {
     // Nothing finite to draw: an empty scene (the renderer's background); the panel says why.
-    glViewport(0, 0, width, height);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  } else {
-    switch (stage_) {
-      case stage_kind::spring:
-        renderer_.draw(spring_stage, view, display, width, height);
-        break;
-      case stage_kind::coupled:
-        renderer_.draw(chain_stage, view, display, width, height);
-        break;
-      case stage_kind::cloth:
-        if (backend_ == cloth_backend::gpu) {
-          // Question 11: the flat grid's vertex shader fetches positions and normals from the
-          // GPU cloth's textures.
-          renderer_.draw_from_textures(gpu_.position_texture(), gpu_.normal_texture(), cloth_stage,
-                                       view, display, width, height);
-          break;
-        }
-        renderer_.draw(cloth_stage, view, display, width, height);
-        break;
-    }
+    return;
   }
-  if (offset)
-    framebuffer_.copy_to_window(left);
+  switch (stage_) {
+    case stage_kind::spring:
+      renderer_.draw(spring_stage, view, display, width, height, left);
+      break;
+    case stage_kind::coupled:
+      renderer_.draw(chain_stage, view, display, width, height, left);
+      break;
+    case stage_kind::cloth:
+      if (backend_ == cloth_backend::gpu) {
+        // Question 11: the flat grid's vertex shader fetches positions and normals from the GPU
+        // cloth's textures.
+        renderer_.draw_from_textures(gpu_.position_texture(), gpu_.normal_texture(), cloth_stage,
+                                     view, display, width, height, left);
+        break;
+      }
+      renderer_.draw(cloth_stage, view, display, width, height, left);
+      break;
+  }
 }
 
 // Question 4: kinetic + gravitational + spring energy. Without damping the exact motion keeps it
@@ -369,11 +452,17 @@ void scene::record_energy() {
       history.erase(history.begin());
     history.push_back(static_cast<float>(values[i]));
   }
+  if (energy_times_.size() == frames_kept)
+    energy_times_.erase(energy_times_.begin());
+  energy_times_.push_back(static_cast<float>(status().time));
+  if (stage_ == stage_kind::spring)
+    spring_motion_.record(spring_stage, status().time, status().step);
 }
 
 void scene::restart_energy_history() {
   for (std::vector<float>& history : energy_history_)
     history.clear();
+  energy_times_.clear();
   record_energy();
 }
 

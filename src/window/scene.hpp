@@ -16,11 +16,12 @@
 #include "gpu_cloth.hpp"
 #include "options.hpp"
 #include "renderer.hpp"
-#include "scene_framebuffer.hpp"
 #include "single_spring.hpp"
 #include "spring_mesh.hpp"
+#include "spring_motion.hpp"
 #include "stability.hpp"
 #include "stability_map.hpp"
+#include "state_images.hpp"
 
 namespace clothlab {
 
@@ -39,6 +40,10 @@ struct simulation_control {
   // stepping at whichever of these two comes first.
   int max_steps_per_frame = 500;
   double max_simulation_seconds_per_frame = 0.05;  // s of wall-clock time
+  // At start, the initial state stays in sight this long (s of wall-clock time, and at least
+  // start_hold_frames frames) before the first step, so that the student sees the cloth drop.
+  double start_hold_seconds = 0.8;
+  int start_hold_frames = 10;
 };
 
 // Where the cloth is simulated (questions 11 and 12): on the CPU in double precision
@@ -65,6 +70,7 @@ struct run_status {
   std::string divergence_reason;  // what the check found, e.g. a non-finite velocity
   std::string divergence_advice;  // dt omega_max and the integrator's limit when it diverged
   bool behind_real_time = false;  // real_time mode: the last frame hit one of its limits
+  double start_hold_left = 0.0;   // s before the first step at start (0: running or paused)
 };
 
 class scene {
@@ -87,9 +93,18 @@ class scene {
   void reset();                         // the current stage back to its initial state
   void toggle_running() { control.running = !control.running; }
   void single_step();  // pauses, then advances exactly one step
-  void reset_view() { view = camera::default_for(stage_); }
+  void reset_view() { view = framed_view(); }
+  // The stage's view, moved back to take in the whole chain (whose lower masses swing down far
+  // below p0 when the springs are soft).
+  camera framed_view() const;
 
   stage_kind stage() const { return stage_; }
+  // True when the next frame would look like the last one unless the user acts: paused or
+  // diverged, no step asked for, no stability map being computed.
+  bool idle() const {
+    return (!control.running || status().diverged) && !single_step_requested_ &&
+           !stability_explorer.running();
+  }
   const run_status& status() const { return status_[static_cast<int>(stage_)]; }
   double current_time_step() const;  // dt of the current stage, s
   // Question 4: the energies after the last frame's steps, and each of them (J) after each of
@@ -97,8 +112,13 @@ class scene {
   // spring, total.
   const energy_breakdown& energy() const { return energy_; }
   const std::array<std::vector<float>, 4>& energy_history() const { return energy_history_; }
+  const std::vector<float>& energy_times() const { return energy_times_; }  // t of each, s
+  // Question 2: the single spring's extension against the exact solution of the 1D model.
+  const spring_motion& motion() const { return spring_motion_; }
   double steps_per_second() const { return measured_steps_per_second_; }
   double frames_per_second() const { return measured_frames_per_second_; }
+  // Steps taken since the program started, every stage and path together (--frames reports it).
+  long steps_taken() const { return steps_taken_; }
 
   // Questions 11 and 12: the cloth's path. switch_cloth_backend carries the current state across
   // (CPU -> GPU: gpu_cloth::load; GPU -> CPU: gpu_cloth::read_state), so the cloth goes on from
@@ -117,14 +137,24 @@ class scene {
   // Question 12: times `steps` steps of each path on copies of the current cloth.
   void measure_both_backends(int steps);
   const backend_comparison& comparison() const { return comparison_; }
+  // Question 11: the cloth's state as the GPU's N x N textures hold it, as small images; made
+  // again when the cloth stepped since the last call (needs the GL context).
+  const state_images& state_textures();
+  bool state_textures_from_gpu() const { return state_images_from_gpu_; }
+  // Question 12: the OpenGL renderer (GL_RENDERER), e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+  const std::string& renderer_name() const { return renderer_name_; }
 
   // The three stages of the lab; the control panel edits their public `parameters`.
   single_spring spring_stage;   // stage 1, section 3
   coupled_springs chain_stage;  // stage 2, question 5
   spring_mesh cloth_stage;      // stage 3, section 4
 
+  // Question 2: the single spring starts with its velocity along the spring (its component along
+  // the rest direction), so that the motion is exactly the 1D model's. Applied at load and reset.
+  bool spring_one_dimensional_start = false;
+
   simulation_control control;
-  render_settings display;
+  render_settings display = {.show_wind = true};
   camera view;
   stability_map stability_explorer;  // question 4: runs on background threads when started
 
@@ -159,6 +189,7 @@ class scene {
   void check_gpu_cloth();
   void record_energy();
   void restart_energy_history();
+  void load_spring_stage();
 
   run_status& current_status() { return status_[static_cast<int>(stage_)]; }
 
@@ -166,12 +197,15 @@ class scene {
   std::array<run_status, 3> status_{};  // indexed by stage_kind
   bool single_step_requested_ = false;
   double unsimulated_seconds_ = 0.0;  // real_time mode: wall-clock time not yet simulated
+  double start_hold_seconds_left_ = 0.0;
+  int start_hold_frames_left_ = 0;
 
   energy_breakdown energy_;
   std::array<std::vector<float>, 4> energy_history_;  // kinetic, gravity, spring, total
+  std::vector<float> energy_times_;                   // t of each entry, s
+  spring_motion spring_motion_;
 
   renderer renderer_;
-  scene_framebuffer framebuffer_;
 
   // Steps and frames counted over about half a second of wall-clock time.
   using clock = std::chrono::steady_clock;
@@ -182,6 +216,7 @@ class scene {
   double measured_frames_per_second_ = 0.0;
   double stepping_seconds_in_rate_window_ = 0.0;
   double measured_stepping_rate_ = 0.0;
+  long steps_taken_ = 0;
 
   // The GPU path (questions 11 and 12). While backend_ is gpu, gpu_ holds the cloth's state and
   // cloth_stage holds a copy read back once per frame, for the divergence check and the energy
@@ -190,6 +225,13 @@ class scene {
   gpu_cloth gpu_;
   std::string backend_message_;
   backend_comparison comparison_;
+  std::string renderer_name_;
+
+  state_images state_images_;
+  long state_images_step_ = -1;  // the cloth's step they show (-1: none yet)
+  bool state_images_from_gpu_ = false;
+  std::vector<double> normal_scratch_;
+  std::vector<float> texel_scratch_;
 };
 
 }  // namespace clothlab

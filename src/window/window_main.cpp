@@ -30,6 +30,10 @@ using namespace clothlab;
 
 constexpr int initial_width = 1280;  // screen coordinates
 constexpr int initial_height = 800;
+// A paused window draws a frame when an event comes (then a few more) or after this long (the
+// readouts stay fresh); otherwise it sleeps instead of drawing the same frame again.
+constexpr double idle_redraw_seconds = 0.5;
+constexpr int frames_drawn_after_event = 3;
 
 // Dear ImGui with its GLFW and OpenGL 3 backends, for the lifetime of the object.
 class imgui_session {
@@ -37,8 +41,17 @@ class imgui_session {
   explicit imgui_session(GLFWwindow* window) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;  // write no imgui.ini into the working directory
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // write no imgui.ini into the working directory
     ImGui::StyleColorsDark();
+    // HiDPI: the font made at the screen's scale (crisp, not stretched) and every size with it.
+    float scale_x = 1.0f, scale_y = 1.0f;
+    glfwGetWindowContentScale(window, &scale_x, &scale_y);
+    const float scale = std::clamp(std::max(scale_x, scale_y), 1.0f, 4.0f);
+    ImFontConfig font;
+    font.SizePixels = std::round(13.0f * scale);  // Dear ImGui's default font is 13 px
+    io.Fonts->AddFontDefault(&font);
+    ImGui::GetStyle().ScaleAllSizes(scale);
     ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains to the window's own key callbacks
     ImGui_ImplOpenGL3_Init("#version 330");
   }
@@ -158,6 +171,36 @@ void save_screenshot(stage_kind stage, int width, int height) {
   std::fflush(stdout);
 }
 
+// --frames COUNT: counts the frames and, after the last one, prints the mean frame time and the
+// steps per second over them.
+class frame_counter {
+ public:
+  frame_counter(long frames, double start_seconds, long start_steps)
+      : frames_(frames), start_seconds_(start_seconds), start_steps_(start_steps) {}
+
+  // Called after each frame's swap; true after the last frame (never when frames is 0).
+  bool frame_done(double now_seconds, long steps) {
+    if (frames_ <= 0 || ++done_ < frames_)
+      return false;
+    const double seconds = now_seconds - start_seconds_;
+    const double steps_per_second =
+        seconds > 0.0 ? static_cast<double>(steps - start_steps_) / seconds : 0.0;
+    std::printf(
+        "clothlab-window: %ld frames in %.2f s: mean frame time %.2f ms (%.1f frames/s), %.0f "
+        "steps/s\n",
+        done_, seconds, 1000.0 * seconds / static_cast<double>(done_),
+        static_cast<double>(done_) / seconds, steps_per_second);
+    std::fflush(stdout);
+    return true;
+  }
+
+ private:
+  long frames_;
+  double start_seconds_;
+  long start_steps_;
+  long done_ = 0;
+};
+
 void apply_actions(const user_actions& actions, scene& the_scene, bool& show_help,
                    glfw_context& context) {
   if (actions.select_stage)
@@ -200,6 +243,10 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
 
   scene the_scene(start);
+  if (start.frames > 0) {  // measured from the first frame: no hold of the initial state
+    the_scene.control.start_hold_seconds = 0.0;
+    the_scene.control.start_hold_frames = 0;
+  }
   if (!the_scene.init_renderer(error)) {
     std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
     return 1;
@@ -212,10 +259,28 @@ int main(int argc, char** argv) {
   mouse_camera_control mouse;
   bool show_help = false;
   double previous_time = glfwGetTime();
+  // --frames COUNT: the window's speed, measured by a script; without vsync, so that it measures
+  // the program and not the screen's refresh rate.
+  frame_counter measured_run(start.frames, previous_time, the_scene.steps_taken());
+  if (start.frames > 0)
+    context->set_vsync(false);
+
+  // Frames still to draw at full rate after an event: Dear ImGui shows the effect of a click or a
+  // hover a frame or two after the event.
+  int frames_after_event = 0;
 
   while (!context->should_close()) {
-    // ---- 1. Poll: window events, keys, mouse ----
-    const window_input input = context->poll_events();
+    // ---- 1. Poll: window events, keys, mouse (a paused, idle window sleeps until one comes) ----
+    window_input input;
+    if (the_scene.idle() && frames_after_event == 0 && start.frames == 0) {
+      bool woke_early = false;
+      input = context->wait_for_events(idle_redraw_seconds, woke_early);
+      if (woke_early)
+        frames_after_event = frames_drawn_after_event;
+    } else {
+      input = context->poll_events();
+      frames_after_event = std::max(frames_after_event - 1, 0);
+    }
     if (context->is_minimised()) {
       context->wait_events();  // nothing to draw: sleep until the window comes back
       previous_time = glfwGetTime();
@@ -250,6 +315,8 @@ int main(int argc, char** argv) {
 
     // ---- 5. Swap ----
     context->swap_buffers();
+    if (measured_run.frame_done(glfwGetTime(), the_scene.steps_taken()))
+      break;
   }
   return 0;
 }

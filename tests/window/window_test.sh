@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
-#   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch
+#   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel|paused_idle
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -34,6 +34,24 @@ if [ -z "${CLOTHLAB_WINDOW_TEST_INSIDE_XVFB:-}" ]; then
   exit "$status"
 fi
 
+# --frames COUNT: the window runs COUNT frames, prints the mean frame time and the steps per
+# second, and exits 0 by itself (no key needed).
+if [ "$scenario" = frames ]; then
+  status=0
+  "$program" --frames 0 >window.log 2>&1 || status=$?
+  [ "$status" -eq 2 ] || fail "--frames 0 was accepted (exit $status, expected 2)"
+  status=0
+  timeout 120 "$program" --frames 40 >window.log 2>&1 || status=$?
+  [ "$status" -eq 0 ] || fail "--frames 40 exited with status $status (expected 0)"
+  line=$(grep -E "^clothlab-window: 40 frames in [0-9.]+ s: mean frame time [0-9.]+ ms \([0-9.]+ frames/s\), [0-9]+ steps/s$" window.log) ||
+    fail "--frames 40 printed no line 'N frames in T s: mean frame time ... ms (... frames/s), ... steps/s'"
+  echo "window test: $line"
+  steps=$(echo "$line" | sed -E 's/.* ([0-9]+) steps\/s$/\1/')
+  [ "$steps" -gt 0 ] || fail "the cloth took no steps during --frames 40"
+  echo "window test ($scenario): PASS"
+  exit 0
+fi
+
 arguments=()
 if [ "$scenario" = divergence ]; then
   # Explicit Euler without damping grows by sqrt(1 + (dt omega)^2) = 3.7 per step here.
@@ -41,7 +59,8 @@ if [ "$scenario" = divergence ]; then
 elif [ "$scenario" = gpu_switch ]; then
   arguments=(--stage cloth --wind-strength 10)  # the cloth flaps in the wind onto the ground
 fi
-"$program" "${arguments[@]}" >window.log 2>&1 &
+# Every run prints where the dt slider is whenever it or the run's state changes.
+CLOTHLAB_PRINT_LAYOUT=1 "$program" "${arguments[@]}" >window.log 2>&1 &
 pid=$!
 
 window=$(timeout 30 xdotool search --sync --onlyvisible --name '^clothlab$' | head -n 1) ||
@@ -108,7 +127,62 @@ check_cloth_drawn() {
   echo "window test: $file: the cloth's red covers $red of the scene"
 }
 
+# The panel is steady: for one stage, the dt slider is at the same height whatever the status
+# (running, paused, diverged, a message about the cloth's path) in every layout line so far.
+# At least min_states different states must have been seen.
+check_steady_panel() {
+  local stage=$1 min_states=$2 lines positions states
+  lines=$(grep "^clothlab-window: layout: $stage stage," window.log) ||
+    fail "no layout line for the $stage stage (CLOTHLAB_PRINT_LAYOUT)"
+  positions=$(echo "$lines" | sed -E 's/.*dt slider at y = //' | sort -u | wc -l)
+  states=$(echo "$lines" | sed -E 's/: dt slider at.*//' | sort -u | wc -l)
+  [ "$positions" -eq 1 ] || fail "the dt slider moved when the status changed:
+$lines"
+  [ "$states" -ge "$min_states" ] || fail "only $states states seen, expected $min_states:
+$lines"
+  echo "window test: the $stage stage's dt slider stayed put through $states states"
+}
+
+# The panel's sliders (x 0-390, y 280-760: the Q4 to Q9 sections of the cloth) are the same
+# pixels in two screenshots.
+check_same_panel() {
+  local first=$1 second=$2 different
+  convert "$first" -crop 390x480+0+280 +repage first-panel.png || fail "cannot crop $first"
+  convert "$second" -crop 390x480+0+280 +repage second-panel.png || fail "cannot crop $second"
+  different=$(compare -metric AE first-panel.png second-panel.png null: 2>&1) || true
+  [ "$different" = 0 ] || fail "the panel's sliders moved between $first and $second ($different pixels differ)"
+  echo "window test: the panel's sliders are the same pixels in $first and $second"
+}
+
 case "$scenario" in
+  paused_idle)
+    # Paused, the window sleeps between events instead of drawing the same frame again: under a
+    # quarter of a core over 3 s (running, it takes one or two cores on llvmpipe).
+    press space
+    sleep 1
+    ticks_before=$(awk '{print $14 + $15}' /proc/$pid/stat)
+    sleep 3
+    ticks_after=$(awk '{print $14 + $15}' /proc/$pid/stat)
+    percent=$(( (ticks_after - ticks_before) * 100 / (3 * $(getconf CLK_TCK)) ))
+    [ "$percent" -lt 25 ] || fail "the paused window used $percent % of a core (expected under 25 %)"
+    echo "window test: paused, the window used $percent % of a core"
+    # It still answers keys while idle: a step (N), then a screenshot (P).
+    press n
+    check_image "$(screenshot_of cloth)" 1280 800 200
+    ;;
+  steady_panel)
+    # The cloth: running, paused, running, switched to the GPU (a message), stepped.
+    sleep 1
+    running=$(screenshot_of cloth)
+    press space
+    paused=$(screenshot_of cloth)
+    check_same_panel "$running" "$paused"
+    press space
+    press g
+    wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
+    press n
+    check_steady_panel cloth 4
+    ;;
   keys)
     press 1
     check_image "$(screenshot_of spring)" 1280 800 200
@@ -139,6 +213,7 @@ case "$scenario" in
       sleep 0.25
     done
     [ "$(grep -c "diverged at step" window.log)" -ge 2 ] || fail "R did not restart the run"
+    check_steady_panel spring 2  # running, then diverged: the slider did not move
     ;;
   gpu_switch)
     # The cloth runs a while on the CPU, goes to the GPU while running, is drawn from the GPU's
@@ -159,7 +234,7 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence or gpu_switch)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel or paused_idle)"
     ;;
 esac
 
