@@ -82,7 +82,7 @@ TEST(Drag, APinnedParticleCannotBeDragged) {
 
 // A dragged free corner follows its target: after 6 s the corner of a 5 x 5 cloth without
 // gravity, damped, comes to rest on q: nothing else pulls the cloth, which follows it.
-TEST(Drag, ADraggedCornerFollowsTheTarget) {
+TEST(SolutionDrag, ADraggedCornerFollowsTheTarget) {
   cloth_parameters p;
   p.grid_size = 5;
   p.pins = pin_mode::none;
@@ -116,7 +116,7 @@ TEST(Tearing, ASpringTearsJustOverTheStrainAndNotUnder) {
 // s(1, 0) past 1.2 (to s(0, 1): 1.044; shear to s(1, 1): 1.640 < 1.697; bending: 2.3, 2.022 <
 // 2.4). Back at rest, with s(1, 0) pushed to (-0.5, -1, 0), s(0, 0) feels nothing: its other
 // springs are at rest and the one that would push it is gone.
-TEST(Tearing, TornSpringsNeverComeBack) {
+TEST(SolutionTearing, TornSpringsNeverComeBack) {
   spring_mesh cloth = flat_cloth(3, 2.0);
   cloth.particles().set_position(0, {-1.3, -1, 0});
   EXPECT_EQ(cloth.tear_springs(0.2), 1u);
@@ -203,7 +203,7 @@ namespace {
 // The drape: the default 20 x 20 cloth dropped without pins onto the sphere c =
 // (0, 0, -0.6), r = 0.3, for 3000 steps (6 s). No particle ever ends a step inside the sphere,
 // and the cloth comes to rest draped over it: the middle of the cloth on top of the sphere.
-TEST(SphereContact, AClothDroppedOnTheSphereDrapesOverItAndNeverEntersIt) {
+TEST(SolutionSphereContact, AClothDroppedOnTheSphereDrapesOverItAndNeverEntersIt) {
   cloth_parameters p;
   p.pins = pin_mode::none;
   p.sphere = {.enabled = true, .centre = {0, 0, -0.6}, .radius = 0.3};  // default friction
