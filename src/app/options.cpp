@@ -27,7 +27,7 @@ struct bounds {
   double low, high;
   const char* unit;
 };
-constexpr bounds time_step_bounds{1e-9, 1.0, "s"};
+constexpr bounds time_step_bounds{1e-9, 10.0, "s"};
 constexpr bounds stiffness_bounds{0.0, 1e9, "N/m"};
 constexpr bounds mass_bounds{1e-6, 1e6, "kg"};
 constexpr bounds gravity_bounds{0.0, 1e3, "m/s^2"};
@@ -352,9 +352,35 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     }
     if (!pin_choice.empty())
       cloth.pins = pins.at(pin_choice);
-    // The options every stage shares go into all three parameter structs.
-    dynamics_parameters* all[] = {&o.spring.dynamics, &o.coupled.dynamics, &o.cloth.dynamics};
-    for (dynamics_parameters* d : all) {
+    // One rule for every option: it sets the chosen stage (--stage, default cloth) and no other
+    // (the window's other stages keep their defaults), and an option that the chosen stage has
+    // no use for is refused, naming the stage it belongs to.
+    const std::string chosen(stage_name(o.stage));
+    const auto refuse_unless = [&](bool fits, const char* const* names, std::size_t count,
+                                   const std::string& whose) {
+      for (std::size_t i = 0; i < count && !fits; ++i) {
+        if (app.count(names[i]) > 0) {
+          throw usage_error{std::string(names[i]) + ": " + whose + " the " + chosen +
+                            " stage has no use for it"};
+        }
+      }
+    };
+    const char* cloth_options[] = {
+        "--N",       "--size",          "--pins",     "--K-struct", "--K-shear",
+        "--K-bend",  "--wind-strength", "--wind-dir", "--ground-z", "--ground-friction",
+        "--scaling", "--reference-N"};
+    refuse_unless(o.stage == stage_kind::cloth, cloth_options, std::size(cloth_options),
+                  "the cloth's option (--stage cloth);");
+    const char* spring_options[] = {"--K"};
+    refuse_unless(o.stage != stage_kind::cloth, spring_options, std::size(spring_options),
+                  "the spring stages' stiffness (the cloth's: --K-struct, --K-shear, --K-bend);");
+    const char* chain_options[] = {"--chain"};
+    refuse_unless(o.stage == stage_kind::coupled, chain_options, std::size(chain_options),
+                  "the chain's option (--stage coupled);");
+    dynamics_parameters* chosen_dynamics = o.stage == stage_kind::spring    ? &o.spring.dynamics
+                                           : o.stage == stage_kind::coupled ? &o.coupled.dynamics
+                                                                            : &o.cloth.dynamics;
+    for (dynamics_parameters* d : {chosen_dynamics}) {
       if (*dt_option)
         d->time_step = dt;
       if (*mu_option)
@@ -401,17 +427,13 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     require_within("--dt", d.time_step, time_step_bounds);
     require_finite("--mu", d.damping);
     require(d.damping >= 0, "--mu", d.damping, "must be at least 0");
-    // (1 - mu dt) must not be negative: for the run's stage headless, for every stage in the
-    // window, where each stage keeps its own dt and the same mu.
-    for (stage_kind checked : {stage_kind::spring, stage_kind::coupled, stage_kind::cloth}) {
-      if (o.headless && checked != o.stage)
-        continue;
-      const dynamics_parameters& c = checked == stage_kind::spring    ? o.spring.dynamics
-                                     : checked == stage_kind::coupled ? o.coupled.dynamics
-                                                                      : o.cloth.dynamics;
-      require(c.damping * c.time_step <= 1, "--mu", c.damping,
-              "mu dt = " + format_number(c.damping * c.time_step) + " for the " +
-                  std::string(stage_name(checked)) + " stage (dt = " + format_number(c.time_step) +
+    // (1 - mu dt) must not be negative, for the two Euler schemes that multiply the velocity by
+    // it (the others apply the damping as a force).
+    if (d.integrator == integrator_kind::semi_implicit ||
+        d.integrator == integrator_kind::explicit_euler) {
+      require(d.damping * d.time_step <= 1, "--mu", d.damping,
+              "mu dt = " + format_number(d.damping * d.time_step) + " for the " + chosen +
+                  " stage (dt = " + format_number(d.time_step) +
                   ") must be at most 1 (the damping factor 1 - mu dt would be negative)");
     }
     require_within("--mass", d.mass, mass_bounds);
@@ -454,16 +476,16 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     require_finite("--ground-friction", cloth.ground_friction);
     require(cloth.ground_friction >= 0, "--ground-friction", cloth.ground_friction,
             "must be at least 0");
-    require(cloth.ground_friction * cloth.dynamics.time_step <= 1, "--ground-friction",
-            cloth.ground_friction,
+    require(o.stage != stage_kind::cloth || cloth.ground_friction * cloth.dynamics.time_step <= 1,
+            "--ground-friction", cloth.ground_friction,
             "mu_g dt = " + format_number(cloth.ground_friction * cloth.dynamics.time_step) +
                 " must be at most 1");
     require_within("--drag-stiffness", cloth.drag.stiffness, stiffness_bounds);
     require_finite("--sphere-friction", cloth.sphere.friction);
     require(cloth.sphere.friction >= 0, "--sphere-friction", cloth.sphere.friction,
             "must be at least 0");
-    require(cloth.sphere.friction * cloth.dynamics.time_step <= 1, "--sphere-friction",
-            cloth.sphere.friction,
+    require(o.stage != stage_kind::cloth || cloth.sphere.friction * cloth.dynamics.time_step <= 1,
+            "--sphere-friction", cloth.sphere.friction,
             "mu_s dt = " + format_number(cloth.sphere.friction * cloth.dynamics.time_step) +
                 " must be at most 1");
     if (app.count("--tear-strain") > 0)

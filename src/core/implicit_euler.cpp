@@ -133,7 +133,12 @@ void implicit_euler_solver::step(const dynamics_parameters& dynamics, const forc
     double residual_norm = rhs_norm;
     while (last_iterations_ < max_iterations) {
       multiply(particles, direction_, product_);
-      const double alpha = rz / dot(direction_, product_);
+      const double curvature = dot(direction_, product_);
+      // A residual so small that its squares underflow (a run at rest after a long time): the
+      // step is solved; dividing 0 by 0 would make it NaN.
+      if (!(rz > 0.0) || !(curvature > 0.0))
+        break;
+      const double alpha = rz / curvature;
       for (std::size_t i = 0; i < dof; ++i) {
         solution_[i] += alpha * direction_[i];
         residual_[i] -= alpha * product_[i];
