@@ -23,10 +23,10 @@ struct options {
   bool headless = false;
   stage_kind stage = stage_kind::cloth;
   backend_kind backend = backend_kind::cpu;
-  int threads = 0;                     // cpu-parallel: threads (0: all cores)
+  int threads = 0;                      // cpu-parallel: threads (0: all cores)
   gl_choice gl = gl_choice::automatic;  // --gl
-  long steps = 1000;     // headless: steps to run
-  std::string csv_path;  // empty: no CSV
+  long steps = 1000;                    // headless: steps to run
+  std::string csv_path;                 // empty: no CSV
   long csv_every = 1;
   std::string obj_path;         // empty: no OBJ
   std::string png_path;         // empty: no PNG
