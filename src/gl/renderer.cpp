@@ -11,10 +11,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <span>
 #include <vector>
 
+#include "export.hpp"
 #include "render_geometry.hpp"
 #include "shader.hpp"
 
@@ -781,6 +783,14 @@ bool save_framebuffer_png(const std::string& path, int width, int height, std::s
   if (stbi_write_png(path.c_str(), width, height, 4, image.data(), static_cast<int>(row_bytes)) ==
       0) {
     error = path + ": cannot write the PNG image";
+    return false;
+  }
+  // stb's writer does not report a failed write (a full disk): the file must be a whole PNG.
+  if (!png_file_is_whole(path)) {
+    std::error_code ignored;
+    if (std::filesystem::is_regular_file(path, ignored))  // never a device such as /dev/full
+      std::filesystem::remove(path, ignored);
+    error = path + ": the PNG image could not be written whole (is the disk full?)";
     return false;
   }
   return true;

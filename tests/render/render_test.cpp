@@ -5,6 +5,11 @@
 // and look at every image before committing it.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -370,6 +375,39 @@ TEST_F(BrokenDataTest, BrokenTextureIsNamed) {
   std::string error;
   EXPECT_FALSE(r.init(error));
   EXPECT_NE(error.find("cloth.png"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace clothlab
+
+namespace clothlab {
+namespace {
+
+// A screenshot that cannot be written whole (a full disk, simulated with a 2000-byte file size
+// limit in a child process) is reported as failed and leaves no file: the window's P and --png
+// both save through save_framebuffer_png, and stb's writer says nothing of a failed write.
+TEST_F(RenderTest, AScreenshotThatCannotBeWrittenWholeFailsAndLeavesNoFile) {
+  render_spring();
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("clothlab-truncated-" + std::to_string(::getpid()) + ".png");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{2000, 2000};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    std::string error;
+    ::_exit(save_framebuffer_png(path.string(), width, height, error) ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << "status " << status;
+  EXPECT_FALSE(std::filesystem::exists(path)) << path << " was left behind";
+  std::filesystem::remove(path);
+  // Without the limit the same save succeeds.
+  std::string error;
+  EXPECT_TRUE(save_framebuffer_png(path.string(), width, height, error)) << error;
+  std::filesystem::remove(path);
 }
 
 }  // namespace
