@@ -33,7 +33,7 @@ for document in documents:
         path = match.group(1)
         if "/" not in path or path.startswith(GENERATED) or path.endswith("/..."):
             continue
-        if not re.search(r"\.(md|sh|py|cpp|hpp|frag|vert|txt|png|supp|json)$|/$", path) and \
+        if not re.search(r"\.(md|sh|py|cpp|hpp|frag|vert|txt|png|supp|json|comp|glsl)$|/$", path) and \
                 not (root / path).is_dir():
             continue  # not a file name (an option value, a fraction...)
         checked += 1
