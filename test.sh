@@ -64,6 +64,8 @@ python3 "$root/scripts/lab-report" "$root/build" "$root/build/test-results.xml"
 # CI (no arguments): the labels that need no OpenGL context also under the sanitizers.
 if [ $# -eq 0 ] && [ "${CLOTHLAB_SKIP_SANITIZE:-0}" != 1 ]; then
   targets=(--target clothlab core_tests cli_tests stability_tests fuzz_tests)
-  sanitize -L "^(core|cli|model|stability|fuzz|stability-solution)$"
+  # (Not the run through EGL: Mesa's EGL driver leaves two 56-byte blocks from a library it
+  # unloads before exit, which LeakSanitizer can neither symbolise nor so suppress.)
+  sanitize -L "^(core|cli|model|stability|fuzz|stability-solution)$" -E "gl_egl"
 fi
 # END TEACHER
