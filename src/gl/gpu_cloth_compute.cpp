@@ -39,7 +39,6 @@ void gpu_cloth_compute::release() {
   if (diverged_ != 0)
     glDeleteBuffers(1, &diverged_);
   diverged_ = 0;
-  diverged_size_ = 0;
   position_ = {};
   velocity_ = {};
   normal_ = 0;
@@ -111,14 +110,15 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
   glUniform1f(step_program_.uniform("speed_bound"),
               check ? static_cast<float>(std::min(speed_bound, 1e30)) : 0.0f);
   if (check) {
-    const std::vector<std::uint32_t> zeros(static_cast<std::size_t>(count), 0u);
+    // The counters of this batch, zeroed (the array is kept between batches).
+    std::vector<std::uint32_t>& zeros = diverged_counts_;
+    zeros.assign(static_cast<std::size_t>(count), 0u);
     if (diverged_ == 0)
       glGenBuffers(1, &diverged_);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, diverged_);
     glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(zeros.size() * 4), zeros.data(),
                  GL_DYNAMIC_READ);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    diverged_size_ = zeros.size();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, diverged_);
   }
   normal_program_.use();
@@ -145,7 +145,7 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
   glUseProgram(0);
   if (!check)
     return 0;
-  std::vector<std::uint32_t> counts(static_cast<std::size_t>(count));
+  std::vector<std::uint32_t>& counts = diverged_counts_;  // count of them, from above
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, diverged_);
   glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(counts.size() * 4),

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,8 @@ class gpu_cloth_compute {
   std::array<GLuint, 2> position_{};
   std::array<GLuint, 2> velocity_{};
   GLuint normal_ = 0;
-  GLuint diverged_ = 0;  // one counter per step of a checked batch
-  std::size_t diverged_size_ = 0;
+  GLuint diverged_ = 0;                         // one counter per step of a checked batch
+  std::vector<std::uint32_t> diverged_counts_;  // their values, uploaded and read back
   mutable std::vector<float> readback_;
 };
 
