@@ -111,6 +111,7 @@ struct row_arrays {
   double* vz;
   const double* moving;        // 1 or 0 (whole array)
   const double* normal[3];     // the row's normals (with wind)
+  double* force[3];            // the row's spring forces (scratch)
   const double* here[6][3];    // the springs of this row, by kind and coordinate
   const double* above[6][3];   // of the row kv - 1
   const double* above2[6][3];  // of the row kv - 2
@@ -126,16 +127,38 @@ struct row_arrays {
 template <bool Wind, bool Explicit, bool Drag>
 [[gnu::always_inline]] inline void sum_and_integrate(const step_constants& c, const row_arrays& a) {
   const std::ptrdiff_t n = c.n;
-  const double *su_x = a.here[0][0], *su_y = a.here[0][1], *su_z = a.here[0][2];
-  const double *sv_x = a.here[1][0], *sv_y = a.here[1][1], *sv_z = a.here[1][2];
-  const double *d1_x = a.here[2][0], *d1_y = a.here[2][1], *d1_z = a.here[2][2];
-  const double *d2_x = a.here[3][0], *d2_y = a.here[3][1], *d2_z = a.here[3][2];
-  const double *bu_x = a.here[4][0], *bu_y = a.here[4][1], *bu_z = a.here[4][2];
-  const double *bv_x = a.here[5][0], *bv_y = a.here[5][1], *bv_z = a.here[5][2];
-  const double *sv_up_x = a.above[1][0], *sv_up_y = a.above[1][1], *sv_up_z = a.above[1][2];
-  const double *d1_up_x = a.above[2][0], *d1_up_y = a.above[2][1], *d1_up_z = a.above[2][2];
-  const double *d2_up_x = a.above[3][0], *d2_up_y = a.above[3][1], *d2_up_z = a.above[3][2];
-  const double *bv_up_x = a.above2[5][0], *bv_up_y = a.above2[5][1], *bv_up_z = a.above2[5][2];
+  // The springs, one coordinate at a time (few arrays per loop: no pointer spills).
+  for (int coordinate = 0; coordinate < 3; ++coordinate) {
+    const double* su = a.here[0][coordinate];
+    const double* sv = a.here[1][coordinate];
+    const double* d1 = a.here[2][coordinate];
+    const double* d2 = a.here[3][coordinate];
+    const double* bu = a.here[4][coordinate];
+    const double* bv = a.here[5][coordinate];
+    const double* sv_up = a.above[1][coordinate];
+    const double* d1_up = a.above[2][coordinate];
+    const double* d2_up = a.above[3][coordinate];
+    const double* bv_up2 = a.above2[5][coordinate];
+    double* g = a.force[coordinate];
+#pragma omp simd
+    for (std::ptrdiff_t ku = 0; ku < n; ++ku) {
+      double f = 0.0;
+      f += su[ku];
+      f += sv[ku];
+      f -= su[ku - 1];
+      f -= sv_up[ku];
+      f += d1[ku];
+      f += d2[ku];
+      f -= d1_up[ku - 1];
+      f -= d2_up[ku + 1];
+      f += bu[ku];
+      f += bv[ku];
+      f -= bu[ku - 2];
+      f -= bv_up2[ku];
+      g[ku] = f;
+    }
+  }
+  const double *fx = a.force[0], *fy = a.force[1], *fz = a.force[2];
   const double *nx = a.normal[0], *ny = a.normal[1], *nz = a.normal[2];
   // Everything in locals: the compiler cannot tell that the stores below leave a and c alone.
   const std::ptrdiff_t first = a.first, dragged_particle = c.dragged;
@@ -149,19 +172,7 @@ template <bool Wind, bool Explicit, bool Drag>
 #pragma omp simd
   for (std::ptrdiff_t ku = 0; ku < n; ++ku) {
     const std::ptrdiff_t k = first + ku;
-    double gx = 0.0, gy = 0.0, gz = 0.0;
-    gx += su_x[ku], gy += su_y[ku], gz += su_z[ku];
-    gx += sv_x[ku], gy += sv_y[ku], gz += sv_z[ku];
-    gx -= su_x[ku - 1], gy -= su_y[ku - 1], gz -= su_z[ku - 1];
-    gx -= sv_up_x[ku], gy -= sv_up_y[ku], gz -= sv_up_z[ku];
-    gx += d1_x[ku], gy += d1_y[ku], gz += d1_z[ku];
-    gx += d2_x[ku], gy += d2_y[ku], gz += d2_z[ku];
-    gx -= d1_up_x[ku - 1], gy -= d1_up_y[ku - 1], gz -= d1_up_z[ku - 1];
-    gx -= d2_up_x[ku + 1], gy -= d2_up_y[ku + 1], gz -= d2_up_z[ku + 1];
-    gx += bu_x[ku], gy += bu_y[ku], gz += bu_z[ku];
-    gx += bv_x[ku], gy += bv_y[ku], gz += bv_z[ku];
-    gx -= bu_x[ku - 2], gy -= bu_y[ku - 2], gz -= bu_z[ku - 2];
-    gx -= bv_up_x[ku], gy -= bv_up_y[ku], gz -= bv_up_z[ku];
+    double gx = fx[ku], gy = fy[ku], gz = fz[ku];
     if (Wind) {
       // The wind, F_w = K_w <n, u_w> n (question 13), with the normals at the start of the step.
       const double along = wind_strength * (nx[ku] * wx + ny[ku] * wy + nz[ku] * wz);
@@ -348,7 +359,7 @@ void cloth_parallel::load(const spring_mesh& cloth) {
     }
   }
   scratch_.assign(static_cast<std::size_t>(std::max(threads(), 1)),
-                  std::vector<double>(ring_rows * row_stride(n) + 3 * count / n, 0.0));
+                  std::vector<double>(ring_rows * row_stride(n) + 6 * count / n, 0.0));
   contact_state_ = particles;
 }
 
@@ -455,8 +466,10 @@ void cloth_parallel::step(const cloth_parameters& given) {
     a.vy = vy_.data();
     a.vz = vz_.data();
     a.moving = moving_.data();
-    for (int coordinate = 0; coordinate < 3; ++coordinate)
+    for (int coordinate = 0; coordinate < 3; ++coordinate) {
       a.normal[coordinate] = normal + coordinate * n;
+      a.force[coordinate] = normal + (3 + coordinate) * n;
+    }
 
     for (int kv = first_row - 2; kv < end_row && first_row < end_row; ++kv) {
       double* out[kinds][3];
