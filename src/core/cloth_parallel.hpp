@@ -82,7 +82,8 @@ class cloth_parallel {
   std::vector<double> vx_, vy_, vz_;  // v, m/s
   std::vector<double> moving_;        // 1 for a moving particle, 0 for a pinned one
   // Per thread: the spring forces of the last three rows (kind, coordinate, row), each row N
-  // long with two zeros on each side (the springs that do not exist), and the normals of a row.
+  // long with two zeros on each side (the springs that do not exist), then the normals and the
+  // summed spring forces of the row being updated (3 + 3 rows of N).
   std::vector<std::vector<double>> scratch_;
   // Self-collision runs the readable path's code, on its layout (3k + c).
   particle_system contact_state_;
