@@ -526,10 +526,11 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       throw usage_error{"--integrator " + integrator + ": the " + backend +
                         " path runs semi-implicit or explicit only; use --backend cpu"};
     }
-    if (o.backend != backend_kind::cpu) {
+    if (o.backend != backend_kind::cpu && o.backend != backend_kind::cpu_parallel) {
       for (const auto* option : {"--tear-strain", "--self-collision"}) {
         if (app.count(option) > 0) {
-          throw usage_error{std::string(option) + ": only the cpu path has it, not --backend " +
+          throw usage_error{std::string(option) +
+                            ": only the cpu and cpu-parallel paths have it, not --backend " +
                             backend};
         }
       }

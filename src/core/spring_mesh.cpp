@@ -310,21 +310,10 @@ void spring_mesh::apply_force() {
 }
 
 std::size_t spring_mesh::tear_springs(double strain) {
-  std::size_t torn = 0;
-  for (auto& family : springs_) {
-    const auto too_long = [&](const spring& s) {
-      const double length =
-          glm::length(particles_.get_position(s.a) - particles_.get_position(s.b));
-      return length > (1.0 + strain) * s.rest_length;
-    };
-    const auto first_torn = std::stable_partition(family.begin(), family.end(),
-                                                  [&](const spring& s) { return !too_long(s); });
-    for (auto it = first_torn; it != family.end(); ++it)
-      set_spring_intact(*it, 0);
-    torn += static_cast<std::size_t>(family.end() - first_torn);
-    family.erase(first_torn, family.end());
-  }
-  return torn;
+  return remove_springs([&](spring_family, const spring& s) {
+    const double length = glm::length(particles_.get_position(s.a) - particles_.get_position(s.b));
+    return length > (1.0 + strain) * s.rest_length;
+  });
 }
 
 void spring_mesh::set_spring_intact(const spring& s, std::uint8_t intact) {

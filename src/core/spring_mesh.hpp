@@ -2,6 +2,7 @@
 // Particle (ku, kv) has index k = ku + N kv; its coordinate c is at 3k + c of the flat arrays.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <span>
@@ -63,6 +64,23 @@ class spring_mesh {
   // Tearing (an addition): removes every spring longer than (1 + strain) L0, for the rest of the
   // run (until load_model); returns how many. apply_force calls it when tear_strain > 0.
   std::size_t tear_springs(double strain);
+  // Removes, for the rest of the run (until load_model), every spring s of every family for
+  // which torn(family, s) is true; returns how many. tear_springs uses it, and so does
+  // cloth_parallel::read_state to hand back the springs torn on the cpu-parallel path.
+  template <class Predicate>
+  std::size_t remove_springs(Predicate torn) {
+    std::size_t removed = 0;
+    for (spring_family family : all_spring_families) {
+      std::vector<spring>& list = springs_[static_cast<int>(family)];
+      const auto first_torn = std::stable_partition(
+          list.begin(), list.end(), [&](const spring& s) { return !torn(family, s); });
+      for (auto it = first_torn; it != list.end(); ++it)
+        set_spring_intact(*it, 0);
+      removed += static_cast<std::size_t>(list.end() - first_torn);
+      list.erase(first_torn, list.end());
+    }
+    return removed;
+  }
   // Whether a triangle of the drawn mesh still has its three springs: each cell (ku, kv) is split
   // along its diagonal (ku, kv)-(ku+1, kv+1) into the lower triangle (ku, kv), (ku+1, kv),
   // (ku+1, kv+1) and the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1). 0 <= ku, kv < N - 1.
