@@ -2,6 +2,7 @@
 // Particle (ku, kv) has index k = ku + N kv; its coordinate c is at 3k + c of the flat arrays.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <span>
@@ -63,6 +64,10 @@ class spring_mesh {
   // Tearing (an addition): removes every spring longer than (1 + strain) L0, for the rest of the
   // run (until load_model); returns how many. apply_force calls it when tear_strain > 0.
   std::size_t tear_springs(double strain);
+  // Removes, as tearing does, every spring s for which torn(s) is true; returns how many. For
+  // carrying a torn state in from another path (the GPU's, gpu_cloth::read_state).
+  template <typename Predicate>
+  std::size_t remove_springs_if(Predicate torn);
   // Whether a triangle of the drawn mesh still has its three springs: each cell (ku, kv) is split
   // along its diagonal (ku, kv)-(ku+1, kv+1) into the lower triangle (ku, kv), (ku+1, kv),
   // (ku+1, kv+1) and the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1). 0 <= ku, kv < N - 1.
@@ -112,6 +117,20 @@ class spring_mesh {
   // it is evaluated at); sets must outlive it.
   force_model forces(const std::array<spring_set, 3>& sets);
 };
+
+template <typename Predicate>
+std::size_t spring_mesh::remove_springs_if(Predicate torn) {
+  std::size_t removed = 0;
+  for (auto& family : springs_) {
+    const auto first_torn = std::stable_partition(family.begin(), family.end(),
+                                                  [&](const spring& s) { return !torn(s); });
+    for (auto it = first_torn; it != family.end(); ++it)
+      set_spring_intact(*it, 0);
+    removed += static_cast<std::size_t>(family.end() - first_torn);
+    family.erase(first_torn, family.end());
+  }
+  return removed;
+}
 
 // Vertex normals of an N x N grid by central differences (model.md):
 // n = normalize(d_u x d_v), d_u = p(min(ku+1,N-1),kv) - p(max(ku-1,0),kv), d_v likewise in kv.
