@@ -173,10 +173,10 @@ void spring_masks(const spring_mesh& cloth, std::vector<std::uint32_t>& masks) {
   for (int kv = 0; kv < n; ++kv) {
     for (int ku = 0; ku < n; ++ku) {
       std::uint32_t& mask = masks[spring_mesh::index(ku, kv, n)];
-      for (int i = 0; i < neighbour_count; ++i) {
-        const auto& [du, dv, family] = neighbour_offsets[static_cast<std::size_t>(i)];
+      for (int bit = 0; bit < neighbour_count; ++bit) {
+        const auto& [du, dv, family] = neighbour_offsets[static_cast<std::size_t>(bit)];
         if (cloth.spring_intact(ku, kv, du, dv))
-          mask |= 1u << i;
+          mask |= 1u << bit;
       }
     }
   }
@@ -188,10 +188,10 @@ void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& clot
   const auto bit = [n](const spring& s) {
     const int du = static_cast<int>(s.b % n) - static_cast<int>(s.a % n);
     const int dv = static_cast<int>(s.b / n) - static_cast<int>(s.a / n);
-    for (int i = 0; i < neighbour_count; ++i) {
-      const auto& offset = neighbour_offsets[static_cast<std::size_t>(i)];
+    for (int bit = 0; bit < neighbour_count; ++bit) {
+      const auto& offset = neighbour_offsets[static_cast<std::size_t>(bit)];
       if (offset[0] == du && offset[1] == dv)
-        return i;
+        return bit;
     }
     return -1;  // never: every spring joins neighbours of the table
   };
