@@ -185,7 +185,7 @@ void spring_masks(const spring_mesh& cloth, std::vector<std::uint32_t>& masks) {
 void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& cloth) {
   const auto n = static_cast<std::uint32_t>(cloth.grid_size());
   // The bit of the spring from a to b in a's mask (both ends agree: the GPU tears both at once).
-  const auto bit = [n](const spring& s) {
+  const auto bit_of = [n](const spring& s) {
     const int du = static_cast<int>(s.b % n) - static_cast<int>(s.a % n);
     const int dv = static_cast<int>(s.b / n) - static_cast<int>(s.a / n);
     for (int bit = 0; bit < neighbour_count; ++bit) {
@@ -196,7 +196,7 @@ void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& clot
     return -1;  // never: every spring joins neighbours of the table
   };
   cloth.remove_springs_if([&](const spring& s) {
-    const int i = bit(s);
+    const int i = bit_of(s);
     return i >= 0 && (masks[s.a] & (1u << i)) == 0u;
   });
 }
