@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -60,12 +61,16 @@ struct path_of : gpu_path {
   void read_state(spring_mesh& cloth) const override { path.read_state(cloth); }
 };
 
-// The fragment path, then the compute path where the context has OpenGL 4.3.
+// The fragment path, then the compute path where it runs: the context has OpenGL 4.3 and its
+// shaders load (the student copy has no compute path: its step shader would hold question 12's
+// answer). Its loading is tested by the SolutionGpuCompute tests.
 std::vector<std::pair<std::string, std::unique_ptr<gpu_path>>> gpu_paths() {
   std::vector<std::pair<std::string, std::unique_ptr<gpu_path>>> paths;
   paths.emplace_back("gpu", std::make_unique<path_of<gpu_cloth>>());
-  if (std::string error; gpu_cloth_compute::available(error))
-    paths.emplace_back("gpu-compute", std::make_unique<path_of<gpu_cloth_compute>>());
+  std::string error;
+  auto compute = std::make_unique<path_of<gpu_cloth_compute>>();
+  if (gpu_cloth_compute::available(error) && compute->load(spring_mesh(), error))
+    paths.emplace_back("gpu-compute", std::move(compute));
   else
     std::printf("  no compute path here: %s\n", error.c_str());
   return paths;
