@@ -1,8 +1,8 @@
 #version 430 core
 // The compute-shader GPU path (--backend gpu-compute, issue 9), pass 1: one step of
 // docs/model.md for particle (ku, kv) = this invocation, in single precision: the same step as
-// gpu_step.frag (forces from the positions and normals at the start of the step, the
-// integrator, the sphere, the ground), on shader storage buffers instead of textures, so that
+// gpu_step.frag (forces from the positions and normals at the start of the step, the springs
+// of the mask only, the integrator, the sphere, the ground), on shader storage buffers instead of textures, so that
 // no rasterisation is involved. Not in the student copy: it holds question 12's answer.
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -14,6 +14,8 @@ layout(std430, binding = 4) writeonly buffer velocity_out { vec4 new_velocity[];
 // The divergence check: step_index's count grows by one for each particle whose new state is
 // not finite or faster than speed_bound (speed_bound 0: no check).
 layout(std430, binding = 5) buffer diverged_count { uint diverged[]; };
+// The spring mask (gpu_cloth.hpp): bit i of word k while a spring joins k to neighbours[i].
+layout(std430, binding = 6) readonly buffer spring_mask_words { uint spring_mask[]; };
 uniform float speed_bound;  // m/s
 uniform int step_index;     // the step's place in the batch
 
@@ -59,9 +61,10 @@ void main() {
     return;
   }
   vec3 force = vec3(0.0);
+  uint joined = spring_mask[i];  // the springs inside the grid and not torn
   for (int s = 0; s < 12; ++s) {
+    if ((joined & (1u << s)) == 0u) continue;
     ivec2 j = k + neighbours[s].xy;
-    if (j.x < 0 || j.y < 0 || j.x >= grid_size || j.y >= grid_size) continue;
     int family = neighbours[s].z;
     vec3 d = p - position[index_of(j)].xyz;
     float L = length(d);

@@ -6,6 +6,7 @@
 uniform sampler2D position_texture;  // xyz: p (m), w: 1 if pinned
 uniform sampler2D velocity_texture;  // xyz: v (m/s)
 uniform sampler2D normal_texture;    // xyz: n of the current positions (unit)
+uniform usampler2D spring_mask_texture;  // bit i: a spring joins the particle to neighbours[i]
 uniform int grid_size;               // N
 
 uniform vec3 stiffness;    // K (N/m) of the structural, shear and bending springs
@@ -45,6 +46,16 @@ const ivec3 neighbours[neighbour_count] = ivec3[neighbour_count](
     ivec3(1, 1, 1), ivec3(-1, -1, 1), ivec3(1, -1, 1), ivec3(-1, 1, 1),     // shear, h√2
     ivec3(2, 0, 2), ivec3(-2, 0, 2), ivec3(0, 2, 2), ivec3(0, -2, 2));      // bending, 2h
 
+// Whether a spring joins particle k to its neighbour k + neighbours[i].xy: the neighbour is inside
+// the grid (springs stop at its border) and the spring has not torn (tearing is an addition of
+// clothlab, off by default: shaders/gpu_tear.frag clears the spring's bit in the mask).
+bool joined(ivec2 k, int i) {
+  ivec2 neighbour = k + neighbours[i].xy;
+  bool inside = neighbour.x >= 0 && neighbour.y >= 0 && neighbour.x < grid_size &&
+                neighbour.y < grid_size;
+  return inside && (texelFetch(spring_mask_texture, k, 0).r & (1u << i)) != 0u;
+}
+
 // Handout equation 2: the force that a spring (K, L0) between i and j exerts on i,
 // F = K (L0 - |p_i - p_j|) (p_i - p_j) / |p_i - p_j|.
 vec3 spring_force(vec3 p_i, vec3 p_j, float K, float L0) {
@@ -69,14 +80,14 @@ void main() {
   // Forces: the springs to every neighbour inside the grid, then the wind.
   vec3 force = vec3(0.0);
   // BEGIN SOLUTION Q12: the spring forces on the GPU
-  // STUDENT| // TODO Q12 (GPU springs): for each of the neighbour_count entries of neighbours[],
-  // STUDENT| // the texel j = k + neighbours[i].xy, if it is inside the N x N grid, is joined to this
-  // STUDENT| // particle by a spring of family neighbours[i].z: add spring_force(p, p_j,
-  // STUDENT| // stiffness[family], rest_length[family]), p_j read with texelFetch(position_texture,
-  // STUDENT| // j, 0).xyz. For now the GPU cloth falls under gravity alone.
+  // STUDENT| // TODO Q12 (GPU springs): for each of the neighbour_count entries of neighbours[]
+  // STUDENT| // that is joined(k, i) to this particle (inside the N x N grid), the texel
+  // STUDENT| // j = k + neighbours[i].xy pulls it by a spring of family neighbours[i].z: add
+  // STUDENT| // spring_force(p, p_j, stiffness[family], rest_length[family]), p_j read with
+  // STUDENT| // texelFetch(position_texture, j, 0).xyz. For now the GPU cloth falls under gravity alone.
   for (int i = 0; i < neighbour_count; ++i) {
+    if (!joined(k, i)) continue;  // outside the grid (or torn)
     ivec2 j = k + neighbours[i].xy;
-    if (j.x < 0 || j.y < 0 || j.x >= grid_size || j.y >= grid_size) continue;
     int family = neighbours[i].z;
     vec3 p_j = texelFetch(position_texture, j, 0).xyz;
     force += spring_force(p, p_j, stiffness[family], rest_length[family]);

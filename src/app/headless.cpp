@@ -633,7 +633,8 @@ int run_stage(const options& o, run_outputs& out) {
             drawn = true;
             status = write_png(o, out, [&](renderer& r, const camera& view) {
               r.draw_from_textures(path.position_texture(), path.normal_texture(), cloth, view,
-                                   render_settings{}, o.width, o.height);
+                                   render_settings{}, o.width, o.height, 0,
+                                   path.spring_mask_texture());
             });
           }
           break;

@@ -528,7 +528,10 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     }
     if (o.backend != backend_kind::cpu && o.backend != backend_kind::cpu_parallel) {
       for (const auto* option : {"--tear-strain", "--self-collision"}) {
-        if (app.count(option) > 0) {
+        const bool gpu_tears =
+            std::string_view(option) == "--tear-strain" &&
+            (o.backend == backend_kind::gpu || o.backend == backend_kind::gpu_compute);
+        if (app.count(option) > 0 && !gpu_tears) {
           throw usage_error{std::string(option) +
                             ": only the cpu and cpu-parallel paths have it, not --backend " +
                             backend};

@@ -81,6 +81,10 @@ class spring_mesh {
     }
     return removed;
   }
+  // Removes, as tearing does, every spring s for which torn(s) is true; returns how many. For
+  // carrying a torn state in from another path (the GPU's, gpu_cloth::read_state).
+  template <typename Predicate>
+  std::size_t remove_springs_if(Predicate torn);
   // Whether a triangle of the drawn mesh still has its three springs: each cell (ku, kv) is split
   // along its diagonal (ku, kv)-(ku+1, kv+1) into the lower triangle (ku, kv), (ku+1, kv),
   // (ku+1, kv+1) and the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1). 0 <= ku, kv < N - 1.
@@ -130,6 +134,11 @@ class spring_mesh {
   // it is evaluated at); sets must outlive it.
   force_model forces(const std::array<spring_set, 3>& sets);
 };
+
+template <typename Predicate>
+std::size_t spring_mesh::remove_springs_if(Predicate torn) {
+  return remove_springs([&](spring_family, const spring& s) { return torn(s); });
+}
 
 // Vertex normals of an N x N grid by central differences (model.md):
 // n = normalize(d_u x d_v), d_u = p(min(ku+1,N-1),kv) - p(max(ku-1,0),kv), d_v likewise in kv.

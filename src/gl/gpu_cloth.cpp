@@ -68,7 +68,7 @@ class saved_gl_state {
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   }
 
-  static constexpr GLuint texture_units = 3;  // the passes read at most three textures
+  static constexpr GLuint texture_units = 4;  // the passes read at most four textures
 
  private:
   static constexpr std::array<GLenum, 5> capabilities = {GL_BLEND, GL_CULL_FACE, GL_DEPTH_TEST,
@@ -100,6 +100,19 @@ GLuint create_state_texture(int n, const std::vector<float>& texels) {
   return texture;
 }
 
+// The N x N GL_R32UI spring mask (gpu_cloth.hpp), texel (ku, kv) = masks[ku + N kv].
+GLuint create_mask_texture(int n, const std::vector<std::uint32_t>& masks) {
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, n, n, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, masks.data());
+  return texture;
+}
+
 // A framebuffer rendering into `targets` (attachment i = targets[i]); 0 and an error if the
 // driver cannot render into them.
 GLuint create_framebuffer(std::initializer_list<GLuint> targets, std::string& error) {
@@ -118,8 +131,8 @@ GLuint create_framebuffer(std::initializer_list<GLuint> targets, std::string& er
     char status_hex[16];
     std::snprintf(status_hex, sizeof status_hex, "0x%04X", status);
     error =
-        "the GPU cloth needs to render into GL_RGBA32F textures, which this OpenGL driver "
-        "refuses (framebuffer status " +
+        "the GPU cloth needs to render into GL_RGBA32F and GL_R32UI textures, which this "
+        "OpenGL driver refuses (framebuffer status " +
         std::string(status_hex) + ")";
     glDeleteFramebuffers(1, &framebuffer);
     return 0;
@@ -138,7 +151,150 @@ void draw_full_screen_pass(int n) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+// Reads one texel (x, y) of attachment `attachment` of `framebuffer` into 4 floats, leaving the
+// caller's read framebuffer and pixel pack buffer bound as they were.
+void read_texel(GLuint framebuffer, GLenum attachment, int x, int y, float* rgba) {
+  GLint read_framebuffer = 0, pixel_pack_buffer = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer);
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pixel_pack_buffer);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  glReadBuffer(attachment);
+  glReadPixels(x, y, 1, 1, GL_RGBA, GL_FLOAT, rgba);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read_framebuffer));
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pixel_pack_buffer));
+}
+
 }  // namespace
+
+void spring_masks(const spring_mesh& cloth, std::vector<std::uint32_t>& masks) {
+  const int n = cloth.grid_size();
+  masks.assign(static_cast<std::size_t>(n) * n, 0u);
+  for (int kv = 0; kv < n; ++kv) {
+    for (int ku = 0; ku < n; ++ku) {
+      std::uint32_t& mask = masks[spring_mesh::index(ku, kv, n)];
+      for (int bit = 0; bit < neighbour_count; ++bit) {
+        const auto& [du, dv, family] = neighbour_offsets[static_cast<std::size_t>(bit)];
+        if (cloth.spring_intact(ku, kv, du, dv))
+          mask |= 1u << bit;
+      }
+    }
+  }
+}
+
+void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& cloth) {
+  const auto n = static_cast<std::uint32_t>(cloth.grid_size());
+  // The bit of the spring from a to b in a's mask (both ends agree: the GPU tears both at once).
+  const auto bit_of = [n](const spring& s) {
+    const int du = static_cast<int>(s.b % n) - static_cast<int>(s.a % n);
+    const int dv = static_cast<int>(s.b / n) - static_cast<int>(s.a / n);
+    for (int bit = 0; bit < neighbour_count; ++bit) {
+      const auto& offset = neighbour_offsets[static_cast<std::size_t>(bit)];
+      if (offset[0] == du && offset[1] == dv)
+        return bit;
+    }
+    return -1;  // never: every spring joins neighbours of the table
+  };
+  cloth.remove_springs_if([&](const spring& s) {
+    const int i = bit_of(s);
+    return i >= 0 && (masks[s.a] & (1u << i)) == 0u;
+  });
+}
+
+std::array<float, 3> tear_lengths(double strain, const std::array<float, 3>& rest_length) {
+  std::array<float, 3> lengths{};
+  for (std::size_t family = 0; family < 3; ++family)
+    lengths[family] = static_cast<float>((1.0 + strain) * rest_length[family]);
+  return lengths;
+}
+
+void step_uniforms::locate(const shader_program& program) {
+  const auto at = [&](const char* name) { return program.uniform(name); };
+  at_ = {.grid_size = at("grid_size"),
+         .stiffness = at("stiffness"),
+         .rest_length = at("rest_length"),
+         .time_step = at("time_step"),
+         .damping = at("damping"),
+         .mass = at("mass"),
+         .gravity = at("gravity"),
+         .explicit_euler = at("explicit_euler"),
+         .wind_strength = at("wind_strength"),
+         .wind_direction = at("wind_direction"),
+         .drag_enabled = at("drag_enabled"),
+         .drag_texel = at("drag_texel"),
+         .drag_target = at("drag_target"),
+         .drag_stiffness = at("drag_stiffness"),
+         .sphere_enabled = at("sphere_enabled"),
+         .sphere_centre = at("sphere_centre"),
+         .sphere_radius = at("sphere_radius"),
+         .sphere_friction = at("sphere_friction"),
+         .ground_enabled = at("ground_enabled"),
+         .ground_height = at("ground_height"),
+         .ground_friction = at("ground_friction")};
+  sent_once_ = false;
+}
+
+void step_uniforms::set(const cloth_parameters& p, int grid_size,
+                        const std::array<float, 3>& rest_length) {
+  const auto f = [](double x) { return static_cast<float>(x); };
+  const auto f3 = [](const glm::dvec3& x) {
+    return std::array<float, 3>{static_cast<float>(x.x), static_cast<float>(x.y),
+                                static_cast<float>(x.z)};
+  };
+  const dynamics_parameters& d = p.dynamics;
+  // u_w, unit. K_w = 0 means no wind at all, as on the CPU, whatever u_w (even a zero one).
+  const glm::dvec3 wind_unit =
+      p.wind_strength != 0.0 ? p.wind_direction / glm::length(p.wind_direction) : glm::dvec3(0.0);
+  const bool drag = p.drag.enabled && p.drag.ku >= 0 && p.drag.ku < grid_size && p.drag.kv >= 0 &&
+                    p.drag.kv < grid_size;
+  const values v = {
+      .grid_size = grid_size,
+      .stiffness = {f(p.structural_stiffness), f(p.shear_stiffness), f(p.bending_stiffness)},
+      .rest_length = rest_length,
+      .time_step = f(d.time_step),
+      .damping = f(d.damping),
+      .mass = f(d.mass),
+      .gravity = f(d.gravity),
+      .explicit_euler = d.integrator == integrator_kind::explicit_euler,
+      .wind_strength = f(p.wind_strength),
+      .wind_direction = f3(wind_unit),
+      .drag_enabled = drag,
+      .drag_texel = {p.drag.ku, p.drag.kv},
+      .drag_target = f3(p.drag.target),
+      .drag_stiffness = f(p.drag.stiffness),
+      .sphere_enabled = p.sphere.enabled,
+      .sphere_centre = f3(p.sphere.centre),
+      .sphere_radius = f(p.sphere.radius),
+      .sphere_friction = f(p.sphere.friction),
+      .ground_enabled = p.ground_enabled,
+      .ground_height = f(p.ground_height),
+      .ground_friction = f(p.ground_friction)};
+  if (sent_once_ && v == sent_)
+    return;  // the program still holds them
+  glUniform1i(at_.grid_size, v.grid_size);
+  glUniform3fv(at_.stiffness, 1, v.stiffness.data());
+  glUniform3fv(at_.rest_length, 1, v.rest_length.data());
+  glUniform1f(at_.time_step, v.time_step);
+  glUniform1f(at_.damping, v.damping);
+  glUniform1f(at_.mass, v.mass);
+  glUniform1f(at_.gravity, v.gravity);
+  glUniform1i(at_.explicit_euler, v.explicit_euler);
+  glUniform1f(at_.wind_strength, v.wind_strength);
+  glUniform3fv(at_.wind_direction, 1, v.wind_direction.data());
+  glUniform1i(at_.drag_enabled, v.drag_enabled);
+  glUniform2iv(at_.drag_texel, 1, v.drag_texel.data());
+  glUniform3fv(at_.drag_target, 1, v.drag_target.data());
+  glUniform1f(at_.drag_stiffness, v.drag_stiffness);
+  glUniform1i(at_.sphere_enabled, v.sphere_enabled);
+  glUniform3fv(at_.sphere_centre, 1, v.sphere_centre.data());
+  glUniform1f(at_.sphere_radius, v.sphere_radius);
+  glUniform1f(at_.sphere_friction, v.sphere_friction);
+  glUniform1i(at_.ground_enabled, v.ground_enabled);
+  glUniform1f(at_.ground_height, v.ground_height);
+  glUniform1f(at_.ground_friction, v.ground_friction);
+  sent_ = v;
+  sent_once_ = true;
+}
 
 gpu_cloth::~gpu_cloth() {
   release();
@@ -153,13 +309,17 @@ void gpu_cloth::release() {
   if (position_[0] == 0)
     return;  // nothing created (load creates the textures first)
   glDeleteFramebuffers(2, framebuffer_.data());
+  glDeleteFramebuffers(2, mask_framebuffer_.data());
   glDeleteFramebuffers(1, &normal_framebuffer_);
   glDeleteTextures(2, position_.data());
   glDeleteTextures(2, velocity_.data());
+  glDeleteTextures(2, spring_mask_.data());
   glDeleteTextures(1, &normal_);
   framebuffer_ = {};
+  mask_framebuffer_ = {};
   position_ = {};
   velocity_ = {};
+  spring_mask_ = {};
   normal_framebuffer_ = 0;
   normal_ = 0;
 }
@@ -201,14 +361,9 @@ bool gpu_cloth::supports_integrator(integrator_kind integrator, std::string& err
 bool gpu_cloth::supports(const cloth_parameters& p, std::string& error) {
   if (!supports_integrator(p.dynamics.integrator, error))
     return false;
-  if (p.tear_strain > 0.0) {
-    error = "tearing (--tear-strain " + std::to_string(p.tear_strain) +
-            "): the GPU path does not tear springs; run the cloth on the CPU";
-    return false;
-  }
   if (p.self_collision_thickness > 0.0) {
     error = "self-collision (--self-collision " + std::to_string(p.self_collision_thickness) +
-            "): the GPU path has no self-collision; run the cloth on the CPU";
+            "): the GPU paths have no self-collision; run the cloth on the CPU";
     return false;
   }
   return true;
@@ -219,17 +374,38 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
   const int n = cloth.grid_size();
   if (!check_grid_size(n, error))
     return false;
-  if (step_program_.id() == 0 &&
-      !step_program_.load("gpu_full_screen.vert", "gpu_step.frag", error)) {
-    return false;
+  saved_gl_state saved;  // the caller's GL state, restored on return
+  if (step_program_.id() == 0) {
+    if (!step_program_.load("gpu_full_screen.vert", "gpu_step.frag", error))
+      return false;
+    step_program_.use();  // the samplers' units, once: they never change
+    glUniform1i(step_program_.uniform("position_texture"), 0);
+    glUniform1i(step_program_.uniform("velocity_texture"), 1);
+    glUniform1i(step_program_.uniform("normal_texture"), 2);
+    glUniform1i(step_program_.uniform("spring_mask_texture"), 3);
+    step_uniforms_.locate(step_program_);
   }
-  if (normal_program_.id() == 0 &&
-      !normal_program_.load("gpu_full_screen.vert", "gpu_normal.frag", error)) {
-    return false;
+  if (normal_program_.id() == 0) {
+    if (!normal_program_.load("gpu_full_screen.vert", "gpu_normal.frag", error))
+      return false;
+    normal_program_.use();
+    glUniform1i(normal_program_.uniform("position_texture"), 0);
   }
-  if (check_program_.id() == 0 &&
-      !check_program_.load("gpu_full_screen.vert", "gpu_check.frag", error)) {
-    return false;
+  if (tear_program_.id() == 0) {
+    if (!tear_program_.load("gpu_full_screen.vert", "gpu_tear.frag", error))
+      return false;
+    tear_program_.use();
+    glUniform1i(tear_program_.uniform("position_texture"), 0);
+    glUniform1i(tear_program_.uniform("spring_mask_texture"), 3);
+    sent_tear_length_ = {};
+  }
+  if (check_program_.id() == 0) {
+    if (!check_program_.load("gpu_full_screen.vert", "gpu_check.frag", error))
+      return false;
+    check_program_.use();
+    glUniform1i(check_program_.uniform("position_texture"), 0);
+    glUniform1i(check_program_.uniform("velocity_texture"), 1);
+    sent_speed_bound_ = -1.0f;
   }
   if (empty_vertex_array_ == 0)
     glGenVertexArrays(1, &empty_vertex_array_);
@@ -253,16 +429,20 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
     positions[4 * k + 3] = particles.is_fixed[k] ? 1.0f : 0.0f;  // w: pinned
     velocities[4 * k + 3] = 0.0f;
   }
+  std::vector<std::uint32_t> masks;
+  spring_masks(cloth, masks);  // the springs the CPU cloth still has
 
-  saved_gl_state saved;
   for (std::size_t copy = 0; copy < 2; ++copy) {
     position_[copy] = create_state_texture(n, positions);
     velocity_[copy] = create_state_texture(n, velocities);
+    spring_mask_[copy] = create_mask_texture(n, masks);
   }
   normal_ = create_state_texture(n, std::vector<float>(4 * count, 0.0f));
   for (std::size_t copy = 0; copy < 2; ++copy) {
     framebuffer_[copy] = create_framebuffer({position_[copy], velocity_[copy]}, error);
-    if (framebuffer_[copy] == 0) {
+    mask_framebuffer_[copy] =
+        framebuffer_[copy] == 0 ? 0 : create_framebuffer({spring_mask_[copy]}, error);
+    if (mask_framebuffer_[copy] == 0) {
       release();
       return false;
     }
@@ -274,7 +454,10 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
   }
   read_ = 0;
   write_ = 1;
+  mask_read_ = 0;
   grid_size_ = n;
+  normal_program_.use();
+  glUniform1i(normal_program_.uniform("grid_size"), n);
   compute_normals();
   return true;
 }
@@ -283,47 +466,9 @@ void gpu_cloth::compute_normals() {
   glBindFramebuffer(GL_FRAMEBUFFER, normal_framebuffer_);
   normal_program_.use();
   bind_texture(0, position_[read_]);
-  glUniform1i(normal_program_.uniform("position_texture"), 0);
-  glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
   glBindVertexArray(empty_vertex_array_);
   saved_gl_state::set_pass_state();
   draw_full_screen_pass(grid_size_);
-}
-
-void set_step_uniforms(const shader_program& program, const cloth_parameters& p, int grid_size,
-                       const std::array<float, 3>& rest_length) {
-  const auto uniform = [&](const char* name) { return program.uniform(name); };
-  glUniform1i(uniform("grid_size"), grid_size);
-  glUniform3f(uniform("stiffness"), static_cast<float>(p.structural_stiffness),
-              static_cast<float>(p.shear_stiffness), static_cast<float>(p.bending_stiffness));
-  glUniform3f(uniform("rest_length"), rest_length[0], rest_length[1], rest_length[2]);
-  const dynamics_parameters& d = p.dynamics;
-  glUniform1f(uniform("time_step"), static_cast<float>(d.time_step));
-  glUniform1f(uniform("damping"), static_cast<float>(d.damping));
-  glUniform1f(uniform("mass"), static_cast<float>(d.mass));
-  glUniform1f(uniform("gravity"), static_cast<float>(d.gravity));
-  glUniform1i(uniform("explicit_euler"), d.integrator == integrator_kind::explicit_euler);
-  // u_w, unit. K_w = 0 means no wind at all, as on the CPU, whatever u_w (even a zero one).
-  const glm::dvec3 wind_unit =
-      p.wind_strength != 0.0 ? p.wind_direction / glm::length(p.wind_direction) : glm::dvec3(0.0);
-  glUniform1f(uniform("wind_strength"), static_cast<float>(p.wind_strength));
-  glUniform3f(uniform("wind_direction"), static_cast<float>(wind_unit.x),
-              static_cast<float>(wind_unit.y), static_cast<float>(wind_unit.z));
-  const bool drag = p.drag.enabled && p.drag.ku >= 0 && p.drag.ku < grid_size && p.drag.kv >= 0 &&
-                    p.drag.kv < grid_size;
-  glUniform1i(uniform("drag_enabled"), drag);
-  glUniform2i(uniform("drag_texel"), p.drag.ku, p.drag.kv);
-  glUniform3f(uniform("drag_target"), static_cast<float>(p.drag.target.x),
-              static_cast<float>(p.drag.target.y), static_cast<float>(p.drag.target.z));
-  glUniform1f(uniform("drag_stiffness"), static_cast<float>(p.drag.stiffness));
-  glUniform1i(uniform("sphere_enabled"), p.sphere.enabled);
-  glUniform3f(uniform("sphere_centre"), static_cast<float>(p.sphere.centre.x),
-              static_cast<float>(p.sphere.centre.y), static_cast<float>(p.sphere.centre.z));
-  glUniform1f(uniform("sphere_radius"), static_cast<float>(p.sphere.radius));
-  glUniform1f(uniform("sphere_friction"), static_cast<float>(p.sphere.friction));
-  glUniform1i(uniform("ground_enabled"), p.ground_enabled);
-  glUniform1f(uniform("ground_height"), static_cast<float>(p.ground_height));
-  glUniform1f(uniform("ground_friction"), static_cast<float>(p.ground_friction));
 }
 
 void gpu_cloth::step(const cloth_parameters& p) {
@@ -342,26 +487,31 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
     throw std::invalid_argument("gpu_cloth::step: " + error);
   if (count < 1)
     return 0;
-  // Once per batch: the caller's GL state saved, the uniforms set.
+  // Once per batch: the caller's GL state saved, the uniforms that changed set (the samplers'
+  // units and the normal pass's N were set by load).
   saved_gl_state saved;
   saved_gl_state::set_pass_state();
   glBindVertexArray(empty_vertex_array_);
 
   step_program_.use();
-  glUniform1i(step_program_.uniform("position_texture"), 0);
-  glUniform1i(step_program_.uniform("velocity_texture"), 1);
-  glUniform1i(step_program_.uniform("normal_texture"), 2);
-  set_step_uniforms(step_program_, p, grid_size_, rest_length_);
-  normal_program_.use();
-  glUniform1i(normal_program_.uniform("position_texture"), 0);
-  glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
+  step_uniforms_.set(p, grid_size_, rest_length_);
+  const bool tear = p.tear_strain > 0.0;
+  if (tear) {
+    const std::array<float, 3> tear_length = tear_lengths(p.tear_strain, rest_length_);
+    if (tear_length != sent_tear_length_) {
+      tear_program_.use();
+      glUniform3fv(tear_program_.uniform("tear_length"), 1, tear_length.data());
+      sent_tear_length_ = tear_length;
+    }
+  }
   const bool check = speed_bound > 0.0;
   if (check) {
-    check_program_.use();
-    glUniform1i(check_program_.uniform("position_texture"), 0);
-    glUniform1i(check_program_.uniform("velocity_texture"), 1);
-    glUniform1f(check_program_.uniform("speed_bound"),
-                static_cast<float>(std::min(speed_bound, 1e30)));
+    const auto bound = static_cast<float>(std::min(speed_bound, 1e30));
+    if (bound != sent_speed_bound_) {
+      check_program_.use();
+      glUniform1f(check_program_.uniform("speed_bound"), bound);
+      sent_speed_bound_ = bound;
+    }
     while (queries_.size() < static_cast<std::size_t>(count)) {
       GLuint query = 0;
       glGenQueries(1, &query);
@@ -376,6 +526,7 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
     bind_texture(0, position_[read_]);
     bind_texture(1, velocity_[read_]);
     bind_texture(2, normal_);  // the normals of the positions at the start of the step
+    bind_texture(3, spring_mask_[mask_read_]);  // the springs not torn
     draw_full_screen_pass(grid_size_);
 
     // Ping-pong: the copy just written becomes the current state, the old one the next target.
@@ -386,6 +537,17 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
     normal_program_.use();
     bind_texture(0, position_[read_]);
     draw_full_screen_pass(grid_size_);
+
+    // Pass 3 (tearing, last in the step): the springs the new positions overstretch are
+    // removed, from mask copy mask_read_ into the other one, which becomes the current one.
+    if (tear) {
+      glBindFramebuffer(GL_FRAMEBUFFER, mask_framebuffer_[1 - mask_read_]);
+      tear_program_.use();
+      bind_texture(0, position_[read_]);
+      bind_texture(3, spring_mask_[mask_read_]);
+      draw_full_screen_pass(grid_size_);
+      mask_read_ = 1 - mask_read_;
+    }
 
     // The divergence check of this step: counted by a query, read after the batch.
     if (check) {
@@ -446,6 +608,31 @@ void gpu_cloth::read_state(spring_mesh& cloth) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_[read_]);
   read_attachment(GL_COLOR_ATTACHMENT0, particles.position);
   read_attachment(GL_COLOR_ATTACHMENT1, particles.velocity);
+
+  // The springs torn on the GPU leave the CPU cloth too.
+  mask_readback_.resize(count);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, mask_framebuffer_[mask_read_]);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glReadPixels(0, 0, grid_size_, grid_size_, GL_RED_INTEGER, GL_UNSIGNED_INT,
+               mask_readback_.data());
+  remove_torn_springs(mask_readback_, cloth);
+}
+
+particle_state gpu_cloth::read_particle(std::size_t k) const {
+  if (!is_loaded())
+    throw std::logic_error("gpu_cloth::read_particle called before a successful load");
+  const auto n = static_cast<std::size_t>(grid_size_);
+  if (k >= n * n) {
+    throw std::out_of_range("gpu_cloth::read_particle: particle k=" + std::to_string(k) +
+                            " is outside the " + std::to_string(n) + " x " + std::to_string(n) +
+                            " grid");
+  }
+  const int ku = static_cast<int>(k % n), kv = static_cast<int>(k / n);
+  std::array<float, 4> position{}, velocity{};
+  read_texel(framebuffer_[read_], GL_COLOR_ATTACHMENT0, ku, kv, position.data());
+  read_texel(framebuffer_[read_], GL_COLOR_ATTACHMENT1, ku, kv, velocity.data());
+  return {glm::dvec3(position[0], position[1], position[2]),
+          glm::dvec3(velocity[0], velocity[1], velocity[2])};
 }
 
 }  // namespace clothlab

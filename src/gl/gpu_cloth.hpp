@@ -13,15 +13,23 @@
 // vertex shader fetches each vertex's position and normal from these textures
 // (renderer::draw_from_textures).
 //
-// One step, two full-screen passes (shaders/):
+// One step, two full-screen passes (shaders/), and a third when the cloth tears:
 //   1. gpu_step.frag (questions 12, 13): reads position, velocity and normal; sums the forces of
 //      the particle's own up to 12 springs (structural, shear, bending) and the wind, then runs
 //      the integrator and the ground contact; writes the new position and the new velocity
 //      (two render targets) into the other copy of each: positions and velocities ping-pong.
 //   2. gpu_normal.frag: the normals of the new positions (central differences), so that the
 //      renderer and the next step's wind see the normals of the current positions.
-// Both use gpu_full_screen.vert.
+//   3. gpu_tear.frag (tearing, an addition, only with tear_strain > 0): the springs that the new
+//      positions stretch beyond (1 + eps) L0 are removed from the spring mask.
+// All use gpu_full_screen.vert.
 // END TEACHER
+//
+// The spring mask (tearing, an addition): an N x N GL_R32UI texture whose texel (ku, kv) has bit
+// i set while a spring joins the particle to its neighbour neighbour_offsets[i] (inside the grid,
+// not torn). The tear pass writes it into the other copy of a ping-pong pair. A spring's two ends
+// compute its length from the same two floats (|p_i - p_j| = |p_j - p_i| bitwise), so they agree
+// on whether it tore.
 //
 // Every call needs the GL context current in which load() was called; destroy the gpu_cloth
 // before that context. step() and read_state() leave the GL state they change (framebuffer
@@ -29,6 +37,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,10 +48,79 @@
 
 namespace clothlab {
 
-// Sets the uniforms of one step of the model (shaders/gpu_step.frag, gpu_compute_step.comp) for
-// the cloth parameters p (effective: question 10's scaling applied), on the program in use.
-void set_step_uniforms(const shader_program& program, const cloth_parameters& p, int grid_size,
-                       const std::array<float, 3>& rest_length);
+// The 12 neighbours a particle can be joined to (handout figure 6), in the order of the spring
+// mask's bits and of the shaders' neighbours[] tables: (du, dv, family), family 0 structural,
+// 1 shear, 2 bending.
+inline constexpr int neighbour_count = 12;
+inline constexpr std::array<std::array<int, 3>, neighbour_count> neighbour_offsets = {
+    {{1, 0, 0},
+     {-1, 0, 0},
+     {0, 1, 0},
+     {0, -1, 0},  // structural, h
+     {1, 1, 1},
+     {-1, -1, 1},
+     {1, -1, 1},
+     {-1, 1, 1},  // shear, h√2
+     {2, 0, 2},
+     {-2, 0, 2},
+     {0, 2, 2},
+     {0, -2, 2}}};  // bending, 2h
+
+// The spring mask of the cloth (see above), one word per particle k = ku + N kv, into `masks`.
+void spring_masks(const spring_mesh& cloth, std::vector<std::uint32_t>& masks);
+// Removes from the cloth the springs that the mask says are torn (both paths' read_state).
+void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& cloth);
+
+// (1 + strain) L0 of the three families, the lengths beyond which their springs tear.
+std::array<float, 3> tear_lengths(double strain, const std::array<float, 3>& rest_length);
+
+// The uniforms of one step of the model (shaders/gpu_step.frag, gpu_compute_step.comp): their
+// locations, looked up once, and the values last sent, so that a batch sends nothing when the
+// parameters have not changed since the last one.
+class step_uniforms {
+ public:
+  // Looks the locations up in `program` (after it is linked); forgets the values sent.
+  void locate(const shader_program& program);
+  // Sets the uniforms for the cloth parameters p (effective: question 10's scaling applied) on
+  // the program in use, the one located, unless they are those it already holds.
+  void set(const cloth_parameters& p, int grid_size, const std::array<float, 3>& rest_length);
+
+ private:
+  struct values {
+    int grid_size = 0;
+    std::array<float, 3> stiffness{}, rest_length{};
+    float time_step = 0, damping = 0, mass = 0, gravity = 0;
+    int explicit_euler = 0;
+    float wind_strength = 0;
+    std::array<float, 3> wind_direction{};
+    int drag_enabled = 0;
+    std::array<int, 2> drag_texel{};
+    std::array<float, 3> drag_target{};
+    float drag_stiffness = 0;
+    int sphere_enabled = 0;
+    std::array<float, 3> sphere_centre{};
+    float sphere_radius = 0, sphere_friction = 0;
+    int ground_enabled = 0;
+    float ground_height = 0, ground_friction = 0;
+    bool operator==(const values&) const = default;
+  };
+  struct locations {
+    GLint grid_size = -1, stiffness = -1, rest_length = -1, time_step = -1, damping = -1, mass = -1,
+          gravity = -1, explicit_euler = -1, wind_strength = -1, wind_direction = -1,
+          drag_enabled = -1, drag_texel = -1, drag_target = -1, drag_stiffness = -1,
+          sphere_enabled = -1, sphere_centre = -1, sphere_radius = -1, sphere_friction = -1,
+          ground_enabled = -1, ground_height = -1, ground_friction = -1;
+  };
+  locations at_;
+  values sent_;
+  bool sent_once_ = false;
+};
+
+// One particle's state as a path holds it (single precision, widened): read_particle.
+struct particle_state {
+  glm::dvec3 position{0.0};  // m
+  glm::dvec3 velocity{0.0};  // m/s
+};
 
 class gpu_cloth {
  public:
@@ -57,15 +136,15 @@ class gpu_cloth {
   // The GPU path integrates with semi-implicit and explicit Euler (model.md) only. True when it
   // can run p's integrator; otherwise false with error naming the integrator.
   static bool supports_integrator(integrator_kind integrator, std::string& error);
-  // Everything of p that the GPU path runs: its integrator, the drag and the sphere; not
-  // tearing or self-collision (false, with error naming the option).
+  // Everything of p that the GPU paths run: their integrators, the drag, the sphere and
+  // tearing; not self-collision (false, with error naming the option).
   static bool supports(const cloth_parameters& p, std::string& error);
 
   // Uploads the CPU cloth's CURRENT state (positions, velocities, pinned flags, the rest lengths
-  // of its three spring families), so that a run can switch from CPU to GPU at any step. Can be
-  // called again to load another state or size. On failure (grid too large, GL_RGBA32F not
-  // renderable, a shader file missing or not compiling) returns false with a full-sentence error
-  // and leaves the gpu_cloth unloaded.
+  // of its three spring families, its torn springs), so that a run can switch from CPU to GPU at
+  // any step. Can be called again to load another state or size. On failure (grid too large,
+  // GL_RGBA32F not renderable, a shader file missing or not compiling) returns false with a
+  // full-sentence error and leaves the gpu_cloth unloaded.
   bool load(const spring_mesh& cloth, std::string& error);
   bool is_loaded() const { return grid_size_ != 0; }
 
@@ -87,15 +166,19 @@ class gpu_cloth {
   double time_steps(const cloth_parameters& p, int count);
 
   // Copies the current positions and velocities (floats, widened to doubles) into
-  // cloth.particles(), for --csv, --obj, --png and the GPU -> CPU switch (call
-  // cloth.compute_normals() where its normals are needed). cloth must have this grid size (throws
-  // std::invalid_argument otherwise).
+  // cloth.particles() and removes from cloth the springs torn on the GPU, for --csv, --obj,
+  // --png and the GPU -> CPU switch (call cloth.compute_normals() where its normals are needed).
+  // cloth must have this grid size (throws std::invalid_argument otherwise).
   void read_state(spring_mesh& cloth) const;
+  // The current position and velocity of particle k = ku + N kv alone (one texel of each: the
+  // mouse grab's read-back). Throws std::out_of_range for k outside the grid.
+  particle_state read_particle(std::size_t k) const;
 
   int grid_size() const { return grid_size_; }  // N of the last successful load, 0 before
   // The textures of the current state (they change at every step: ask after stepping).
   GLuint position_texture() const { return position_[read_]; }
   GLuint normal_texture() const { return normal_; }
+  GLuint spring_mask_texture() const { return spring_mask_[mask_read_]; }  // GL_R32UI
 
  private:
   void release();
@@ -105,9 +188,13 @@ class gpu_cloth {
   std::array<float, 3> rest_length_{};  // L0 of the structural, shear, bending springs: h, h√2, 2h
   shader_program step_program_;
   shader_program normal_program_;
-  shader_program check_program_;   // the divergence check (run)
-  std::vector<GLuint> queries_;    // one occlusion query per step of a checked batch
-  GLuint empty_vertex_array_ = 0;  // the full-screen triangle needs no vertex data
+  shader_program tear_program_;              // pass 3, tearing
+  shader_program check_program_;             // the divergence check (run)
+  step_uniforms step_uniforms_;              // step_program_'s
+  std::array<float, 3> sent_tear_length_{};  // the tear pass's last uniform value
+  float sent_speed_bound_ = -1.0f;           // the check pass's
+  std::vector<GLuint> queries_;              // one occlusion query per step of a checked batch
+  GLuint empty_vertex_array_ = 0;            // the full-screen triangle needs no vertex data
 
   // Ping-pong: copy read_ holds the current state, copy write_ receives the next one; they swap
   // after every step. framebuffer_[i] renders into position_[i] (attachment 0) and velocity_[i]
@@ -118,6 +205,12 @@ class gpu_cloth {
   std::array<GLuint, 2> velocity_{};
   std::array<GLuint, 2> framebuffer_{};
   mutable std::vector<float> readback_;  // read_state's RGBA texels, reused
+  // The spring mask, ping-pong: copy mask_read_ is the current one; mask_framebuffer_[i] renders
+  // into spring_mask_[i]. Its own index: the tear pass runs only when the cloth tears.
+  int mask_read_ = 0;
+  std::array<GLuint, 2> spring_mask_{};
+  std::array<GLuint, 2> mask_framebuffer_{};
+  mutable std::vector<std::uint32_t> mask_readback_;
   // The normals are computed from the positions alone, never from themselves: one copy suffices.
   GLuint normal_ = 0;
   GLuint normal_framebuffer_ = 0;

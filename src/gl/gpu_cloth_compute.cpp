@@ -9,11 +9,12 @@
 namespace clothlab {
 namespace {
 
-GLuint create_buffer(const std::vector<float>& data) {
+template <typename T>
+GLuint create_buffer(const std::vector<T>& data) {
   GLuint buffer = 0;
   glGenBuffers(1, &buffer);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
-  glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)),
+  glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(T)),
                data.data(), GL_DYNAMIC_COPY);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   return buffer;
@@ -36,12 +37,14 @@ void gpu_cloth_compute::release() {
   glDeleteBuffers(2, position_.data());
   glDeleteBuffers(2, velocity_.data());
   glDeleteBuffers(1, &normal_);
+  glDeleteBuffers(1, &spring_mask_);
   if (diverged_ != 0)
     glDeleteBuffers(1, &diverged_);
   diverged_ = 0;
   position_ = {};
   velocity_ = {};
   normal_ = 0;
+  spring_mask_ = 0;
 }
 
 bool gpu_cloth_compute::available(std::string& error) {
@@ -59,10 +62,19 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
   release();
   if (!available(error))
     return false;
-  if (step_program_.id() == 0 && !step_program_.load_compute("gpu_compute_step.comp", error))
-    return false;
+  if (step_program_.id() == 0) {
+    if (!step_program_.load_compute("gpu_compute_step.comp", error))
+      return false;
+    step_uniforms_.locate(step_program_);
+    sent_speed_bound_ = -1.0f;
+  }
   if (normal_program_.id() == 0 && !normal_program_.load_compute("gpu_compute_normal.comp", error))
     return false;
+  if (tear_program_.id() == 0) {
+    if (!tear_program_.load_compute("gpu_compute_tear.comp", error))
+      return false;
+    sent_tear_length_ = {};
+  }
   rest_length_ = {static_cast<float>(cloth.rest_length(spring_family::structural)),
                   static_cast<float>(cloth.rest_length(spring_family::shear)),
                   static_cast<float>(cloth.rest_length(spring_family::bending))};
@@ -81,8 +93,13 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
     velocity_[copy] = create_buffer(velocities);
   }
   normal_ = create_buffer(std::vector<float>(4 * count, 0.0f));
+  std::vector<std::uint32_t> masks;
+  spring_masks(cloth, masks);  // the springs the CPU cloth still has
+  spring_mask_ = create_buffer(masks);
   read_ = 0;
   grid_size_ = cloth.grid_size();
+  tear_program_.use();
+  glUniform1i(tear_program_.uniform("grid_size"), grid_size_);
   // The normals of the initial positions.
   normal_program_.use();
   glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
@@ -105,10 +122,13 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
   if (count < 1)
     return 0;
   step_program_.use();
-  set_step_uniforms(step_program_, p, grid_size_, rest_length_);
+  step_uniforms_.set(p, grid_size_, rest_length_);
   const bool check = speed_bound > 0.0;
-  glUniform1f(step_program_.uniform("speed_bound"),
-              check ? static_cast<float>(std::min(speed_bound, 1e30)) : 0.0f);
+  if (const float bound = check ? static_cast<float>(std::min(speed_bound, 1e30)) : 0.0f;
+      bound != sent_speed_bound_) {
+    glUniform1f(step_program_.uniform("speed_bound"), bound);
+    sent_speed_bound_ = bound;
+  }
   if (check) {
     // The counters of this batch, zeroed (the array is kept between batches).
     std::vector<std::uint32_t>& zeros = diverged_counts_;
@@ -121,8 +141,16 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, diverged_);
   }
-  normal_program_.use();
-  glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
+  const bool tear = p.tear_strain > 0.0;
+  if (tear) {
+    const std::array<float, 3> tear_length = tear_lengths(p.tear_strain, rest_length_);
+    if (tear_length != sent_tear_length_) {
+      tear_program_.use();
+      glUniform3fv(tear_program_.uniform("tear_length"), 1, tear_length.data());
+      sent_tear_length_ = tear_length;
+    }
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, spring_mask_);
   for (int s = 0; s < count; ++s) {
     const int write = 1 - read_;
     step_program_.use();
@@ -140,6 +168,11 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
     glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
+    // Tearing, last in the step: from the new positions (binding 0), into the mask.
+    if (tear) {
+      tear_program_.use();
+      glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
+    }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   glUseProgram(0);
@@ -177,7 +210,34 @@ void gpu_cloth_compute::read_state(spring_mesh& cloth) const {
         (*target)[3 * k + c] = static_cast<double>(readback_[4 * k + c]);
     }
   }
+  // The springs torn on the GPU leave the CPU cloth too.
+  mask_readback_.resize(count);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, spring_mask_);
+  glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                     static_cast<GLsizeiptr>(count * sizeof(std::uint32_t)), mask_readback_.data());
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  remove_torn_springs(mask_readback_, cloth);
+}
+
+particle_state gpu_cloth_compute::read_particle(std::size_t k) const {
+  if (!is_loaded())
+    throw std::logic_error("gpu_cloth_compute::read_particle called before a successful load");
+  const auto n = static_cast<std::size_t>(grid_size_);
+  if (k >= n * n) {
+    throw std::out_of_range("gpu_cloth_compute::read_particle: particle k=" + std::to_string(k) +
+                            " is outside the " + std::to_string(n) + " x " + std::to_string(n) +
+                            " grid");
+  }
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::array<std::array<float, 4>, 2> texels{};  // position, velocity
+  const auto offset = static_cast<GLintptr>(k * sizeof(texels[0]));
+  for (std::size_t i = 0; i < 2; ++i) {
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, i == 0 ? position_[read_] : velocity_[read_]);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, offset, sizeof(texels[i]), texels[i].data());
+  }
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  return {glm::dvec3(texels[0][0], texels[0][1], texels[0][2]),
+          glm::dvec3(texels[1][0], texels[1][1], texels[1][2])};
 }
 
 }  // namespace clothlab

@@ -4,7 +4,9 @@
 // fragment shaders over textures: no rasterisation, no framebuffer. One step, two dispatches:
 // shaders/gpu_compute_step.comp (forces, integrator, sphere, ground) from copy read_ into copy
 // write_ of the positions and velocities, which then swap, and shaders/gpu_compute_normal.comp
-// (the normals of the new positions). It runs what gpu_cloth runs (supports() is the same).
+// (the normals of the new positions), and, when the cloth tears, shaders/gpu_compute_tear.comp
+// (the springs the new positions overstretch leave the spring mask, a storage buffer of one word
+// per particle, gpu_cloth.hpp). It runs what gpu_cloth runs (supports() is the same).
 // Needs a 4.3 context (the off-screen ones ask for it); load() refuses an older one by name.
 #pragma once
 
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "gl.hpp"
+#include "gpu_cloth.hpp"
 #include "shader.hpp"
 #include "spring_mesh.hpp"
 
@@ -30,8 +33,8 @@ class gpu_cloth_compute {
   // error naming the version it has.
   static bool available(std::string& error);
 
-  // Uploads the cloth's current state; false with a full-sentence error when the context is
-  // older than 4.3 or a shader is missing or does not compile.
+  // Uploads the cloth's current state (its torn springs included); false with a full-sentence error
+  // when the context is older than 4.3 or a shader is missing or does not compile.
   bool load(const spring_mesh& cloth, std::string& error);
   bool is_loaded() const { return grid_size_ != 0; }
   // `count` steps (uniforms set once). With speed_bound > 0 (m/s) every step is checked on the
@@ -39,8 +42,12 @@ class gpu_cloth_compute {
   // first step of the batch (1..count) after which one was, 0 when none. Throws like
   // gpu_cloth::step.
   int run(const cloth_parameters& p, int count = 1, double speed_bound = 0.0);
-  // Copies the positions and velocities (widened to doubles) into cloth.particles().
+  // Copies the positions and velocities (widened to doubles) into cloth.particles() and
+  // removes from cloth the springs torn on the GPU.
   void read_state(spring_mesh& cloth) const;
+  // The current position and velocity of particle k = ku + N kv alone (the mouse grab's
+  // read-back). Throws std::out_of_range for k outside the grid.
+  particle_state read_particle(std::size_t k) const;
   int grid_size() const { return grid_size_; }
 
  private:
@@ -50,10 +57,16 @@ class gpu_cloth_compute {
   std::array<float, 3> rest_length_{};
   shader_program step_program_;
   shader_program normal_program_;
+  shader_program tear_program_;
+  step_uniforms step_uniforms_;              // step_program_'s
+  std::array<float, 3> sent_tear_length_{};  // tear_program_'s last uniform value
+  float sent_speed_bound_ = -1.0f;           // step_program_'s
   int read_ = 0;  // copy of positions/velocities holding the current state
   std::array<GLuint, 2> position_{};
   std::array<GLuint, 2> velocity_{};
   GLuint normal_ = 0;
+  GLuint spring_mask_ = 0;  // one word per particle, updated in place by the tear pass
+  mutable std::vector<std::uint32_t> mask_readback_;
   GLuint diverged_ = 0;                         // one counter per step of a checked batch
   std::vector<std::uint32_t> diverged_counts_;  // their values, uploaded and read back
   mutable std::vector<float> readback_;

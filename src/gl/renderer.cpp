@@ -96,6 +96,7 @@ void convert_to_float(std::span<const double> source, std::vector<float>& target
 constexpr int cloth_texture_unit = 0;
 constexpr int position_texture_unit = 1;
 constexpr int normal_texture_unit = 2;
+constexpr int spring_mask_texture_unit = 3;
 
 // Attribute locations shared by the shaders (see shaders/draw_*.vert).
 constexpr GLuint position_or_texel_location = 0;
@@ -638,6 +639,18 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
     glDrawElements(mode, static_cast<GLsizei>(range.count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(range.first * sizeof(std::uint32_t)));
   };
+  // The surface: the CPU cloth's intact triangles by index; the GPU cloth's every triangle
+  // (draw_from_textures), its vertex shaders collapsing those that lost a spring.
+  const auto draw_triangles = [&] {
+    if (vao != texture_cloth_vao) {
+      draw_range(GL_TRIANGLES, cloth_index_ranges.triangles);
+      return;
+    }
+    const GLsizei cells = (cloth.grid_size() - 1) * (cloth.grid_size() - 1);
+    glBindVertexArray(empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 6 * cells);
+    glBindVertexArray(vao);
+  };
 
   glActiveTexture(GL_TEXTURE0 + cloth_texture_unit);
   glBindTexture(GL_TEXTURE_2D, cloth_texture);
@@ -654,7 +667,7 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.0f, 1.0f);
   glBindVertexArray(vao);
-  draw_range(GL_TRIANGLES, cloth_index_ranges.triangles);
+  draw_triangles();
 
   glDisable(GL_POLYGON_OFFSET_FILL);
 
@@ -667,7 +680,7 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(2.0f, 4.0f);  // in front of the ground, behind the cloth lying on it
     glDepthFunc(GL_LEQUAL);
-    draw_range(GL_TRIANGLES, cloth_index_ranges.triangles);
+    draw_triangles();
     glDepthFunc(GL_LESS);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
@@ -783,14 +796,27 @@ void renderer::draw(const spring_mesh& cloth, const camera& view, const render_s
 
 void renderer::draw_from_textures(GLuint position_texture, GLuint normal_texture,
                                   const spring_mesh& cloth, const camera& view,
-                                  const render_settings& settings, int width, int height,
-                                  int left) {
+                                  const render_settings& settings, int width, int height, int left,
+                                  GLuint spring_mask_texture) {
   impl_->ensure_cloth_buffers(cloth);
   const frame f = impl_->begin_frame(view, left, width, height);
   glActiveTexture(GL_TEXTURE0 + position_texture_unit);
   glBindTexture(GL_TEXTURE_2D, position_texture);
   glActiveTexture(GL_TEXTURE0 + normal_texture_unit);
   glBindTexture(GL_TEXTURE_2D, normal_texture);
+  glActiveTexture(GL_TEXTURE0 + spring_mask_texture_unit);
+  glBindTexture(GL_TEXTURE_2D, spring_mask_texture);
+  // The triangles come from gl_VertexID (cell, corner) and are left out where the mask says a
+  // spring of theirs tore; without a mask, all are drawn.
+  for (const shader_program* program :
+       {&impl_->texture_cloth.surface, &impl_->texture_cloth.shadow, &impl_->texture_cloth.lines}) {
+    program->use();
+    set_uniform(*program, "spring_mask_texture", spring_mask_texture_unit);
+    set_uniform(*program, "use_spring_mask", spring_mask_texture != 0 ? 1 : 0);
+    set_uniform(*program, "grid_size", cloth.grid_size());
+    set_uniform(*program, "triangles_from_vertex_id",
+                program != &impl_->texture_cloth.lines ? 1 : 0);
+  }
   impl_->draw_cloth(f, cloth, settings, impl_->texture_cloth, impl_->texture_cloth_vao);
   glActiveTexture(GL_TEXTURE0);
   glDisable(GL_SCISSOR_TEST);

@@ -50,9 +50,11 @@ class renderer {
   // each vertex's position and normal from N x N RGBA32F textures (texel (ku, kv) = particle
   // ku + N kv). Lighting, texture, ground and wireframe as for the CPU cloth; the springs
   // overlay and the pins are taken from `cloth` (its parameters and topology, not its positions).
+  // With a spring mask (gpu_cloth::spring_mask_texture) the triangles that lost a spring on the
+  // GPU are left out, without reading the state back; without one (0), every triangle is drawn.
   void draw_from_textures(GLuint position_texture, GLuint normal_texture, const spring_mesh& cloth,
                           const camera& view, const render_settings& settings, int width,
-                          int height, int left = 0);
+                          int height, int left = 0, GLuint spring_mask_texture = 0);
 
  private:
   struct impl;

@@ -675,7 +675,9 @@ INSTANTIATE_TEST_SUITE_P(
                   {"--sphere", "0,0,0,1", "--sphere-friction", "1e4"},
                   "--sphere-friction"},
         bad_usage{"NegativeTearStrain", {"--tear-strain", "-0.1"}, "--tear-strain"},
-        bad_usage{"TearingOnTheGpu", {"--tear-strain", "0.2", "--backend", "gpu"}, "--tear-strain"},
+        bad_usage{"SelfCollisionOnTheGpu",
+                  {"--self-collision", "0.01", "--backend", "gpu"},
+                  "--self-collision"},
         bad_usage{"SphereOnTheSpring", {"--stage", "spring", "--sphere", "0,0,0,1"}, "--sphere"}),
     [](const ::testing::TestParamInfo<bad_usage>& param_info) { return param_info.param.label; });
 

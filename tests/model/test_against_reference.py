@@ -24,7 +24,10 @@ cases=[
 cases += [
  (['--stage','cloth','--N','7','--steps','400','--pins','none','--sphere','0,0,-0.3,0.25','--sphere-friction','3','--drag','6,6:0.6,0.6,0.3','--drag-stiffness','400'], dict(stage='cloth',steps=400,N=7,pins=False,sphere=(0,0,-0.3,0.25),mus=3.0,drag=(6,6,(0.6,0.6,0.3)),Kd=400.0)),
  (['--stage','cloth','--N','8','--steps','300','--pins','none','--sphere','0,0,-0.2,0.15','--self-collision','0.12'], dict(stage='cloth',steps=300,N=8,pins=False,sphere=(0,0,-0.2,0.15),self_d=0.12)),
- (['--stage','cloth','--N','6','--steps','300','--tear-strain','0.15','--drag','5,5:1.5,1.5,0.5','--drag-stiffness','20000'], dict(stage='cloth',steps=300,N=6,tear=0.15,drag=(5,5,(1.5,1.5,0.5)),Kd=20000.0)),
+ # Tearing (20 of the 50 triangles torn), with a drag soft enough for the GPU paths'
+ # single precision to follow (measured: 5.4e-5 relative on llvmpipe, where a drag stiffness of
+ # 20000 drifts by 1e-2 even without tearing).
+ (['--stage','cloth','--N','6','--steps','300','--tear-strain','0.1','--drag','5,5:1.5,1.5,0.5','--drag-stiffness','1000'], dict(stage='cloth',steps=300,N=6,tear=0.1,drag=(5,5,(1.5,1.5,0.5)),Kd=1000.0)),
 ]
 # The other paths on the same cloth cases: cpu-parallel in double precision (the same 1e-12),
 # the two GPU paths in single precision (a relative 1e-4: float rounding over hundreds of steps).
@@ -38,8 +41,8 @@ workdir = tempfile.mkdtemp(prefix='clothlab-model-')
 path = os.path.join(workdir, 'c.csv')
 for backend, tolerance in PATHS:
   for args,kw in cases:
-    if backend != 'cpu' and (kw['stage'] != 'cloth' or (backend != 'cpu-parallel' and ('--tear-strain' in args or '--self-collision' in args))):
-        continue  # the other paths run the cloth; tearing and self-collision are the CPU paths'
+    if backend != 'cpu' and (kw['stage'] != 'cloth' or ('--self-collision' in args and backend != 'cpu-parallel')):
+        continue  # the other paths run the cloth; self-collision is the CPU paths'
     run_args = [B,'--headless','--csv',path]+args+['--backend',backend]
     subprocess.run(run_args,check=True,stdout=subprocess.DEVNULL)
     with open(path) as f:
