@@ -1,6 +1,7 @@
 #include "scene.hpp"
 
 #include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -37,6 +38,11 @@ scene::scene(const options& start)
       cloth_stage(start.cloth),
       view(camera::default_for(start.stage)),
       stage_(start.stage) {}
+
+scene::~scene() {
+  if (probe_framebuffer_ != 0)
+    glDeleteFramebuffers(1, &probe_framebuffer_);
+}
 
 bool scene::init_renderer(std::string& error) {
   if (const GLubyte* name = glGetString(GL_RENDERER); name != nullptr)
@@ -224,6 +230,110 @@ void scene::measure_both_backends(int steps) {
   std::fflush(stdout);
 }
 
+// ---- The mouse on the cloth (issue 10) -----------------------------------------------------
+
+pick_ray scene::ray_at(double x, double y) const {
+  const double ndc_x = 2.0 * (x - viewport_left_) / viewport_width_ - 1.0;
+  const double ndc_y = 1.0 - 2.0 * y / viewport_height_;
+  const float aspect = static_cast<float>(viewport_width_) / static_cast<float>(viewport_height_);
+  return ray_through(view, aspect, ndc_x, ndc_y);
+}
+
+double scene::radians_per_pixel() const {
+  return static_cast<double>(view.field_of_view) / viewport_height_;
+}
+
+std::optional<glm::dvec2> scene::framebuffer_point(const glm::dvec3& point) const {
+  const float aspect = static_cast<float>(viewport_width_) / static_cast<float>(viewport_height_);
+  const glm::dvec4 clip =
+      glm::dmat4(view.projection(aspect)) * glm::dmat4(view.view()) * glm::dvec4(point, 1.0);
+  if (clip.w <= 0.0)
+    return std::nullopt;
+  return glm::dvec2(viewport_left_ + (clip.x / clip.w + 1.0) / 2.0 * viewport_width_,
+                    (1.0 - clip.y / clip.w) / 2.0 * viewport_height_);
+}
+
+bool scene::grab_particle(const pick_ray& ray, double max_angle) {
+  if (stage_ != stage_kind::cloth || status().diverged)
+    return false;
+  if (cloth_on_gpu())
+    gpu_.read_state(cloth_stage);  // the positions the user sees, once, at the press
+  const std::optional<std::size_t> picked = pick_particle(cloth_stage, ray, max_angle);
+  if (!picked)
+    return false;
+  const int n = cloth_stage.grid_size();
+  const int ku = static_cast<int>(*picked % static_cast<std::size_t>(n));
+  const int kv = static_cast<int>(*picked / static_cast<std::size_t>(n));
+  const glm::dvec3 position = cloth_stage.particles().get_position(*picked);
+  if (cloth_stage.particles().is_fixed[*picked]) {
+    std::printf("clothlab-window: particle (%d, %d) is pinned: it cannot be dragged\n", ku, kv);
+    std::fflush(stdout);
+    return false;
+  }
+  drag_parameters& drag = cloth_stage.parameters.drag;
+  drag.enabled = true;
+  drag.ku = ku;
+  drag.kv = kv;
+  drag.target = position;
+  grab_plane_point_ = position;
+  std::printf("clothlab-window: grabbed particle (%d, %d) at (%.3f, %.3f, %.3f)\n", ku, kv,
+              position.x, position.y, position.z);
+  std::fflush(stdout);
+  return true;
+}
+
+void scene::drag_grabbed(const pick_ray& ray) {
+  if (grabbing())
+    cloth_stage.parameters.drag.target =
+        point_on_plane(ray, grab_plane_point_, viewing_direction(view));
+}
+
+void scene::release_grab() {
+  drag_parameters& drag = cloth_stage.parameters.drag;
+  if (!drag.enabled)
+    return;
+  const glm::dvec3 position = grabbed_position();
+  drag.enabled = false;
+  std::printf(
+      "clothlab-window: released particle (%d, %d) at (%.3f, %.3f, %.3f), target (%.3f, %.3f, "
+      "%.3f)\n",
+      drag.ku, drag.kv, position.x, position.y, position.z, drag.target.x, drag.target.y,
+      drag.target.z);
+  std::fflush(stdout);
+}
+
+glm::dvec3 scene::grabbed_position() {
+  const drag_parameters& drag = cloth_stage.parameters.drag;
+  const int n = cloth_stage.grid_size();
+  const std::size_t k =
+      spring_mesh::index(std::clamp(drag.ku, 0, n - 1), std::clamp(drag.kv, 0, n - 1), n);
+  if (!cloth_on_gpu() || !gpu_.is_loaded())
+    return cloth_stage.particles().get_position(k);
+  // One texel of the position texture, through a framebuffer of our own.
+  if (probe_framebuffer_ == 0)
+    glGenFramebuffers(1, &probe_framebuffer_);
+  GLint previous = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, probe_framebuffer_);
+  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                         gpu_.position_texture(), 0);
+  float texel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glReadPixels(drag.ku, drag.kv, 1, 1, GL_RGBA, GL_FLOAT, texel);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous));
+  return {texel[0], texel[1], texel[2]};
+}
+
+void scene::start_sphere_move(const pick_ray& ray) {
+  const sphere_parameters& sphere = cloth_stage.parameters.sphere;
+  sphere_plane_point_ = sphere.centre;
+  sphere_grab_offset_ = point_on_plane(ray, sphere.centre, viewing_direction(view)) - sphere.centre;
+}
+
+void scene::move_sphere(const pick_ray& ray) {
+  cloth_stage.parameters.sphere.centre =
+      point_on_plane(ray, sphere_plane_point_, viewing_direction(view)) - sphere_grab_offset_;
+}
+
 double scene::current_time_step() const {
   switch (stage_) {
     case stage_kind::spring:
@@ -404,6 +514,9 @@ void scene::report_divergence(divergence_status check) {
 // Display: the renderer reads the state and never changes it. It draws straight into the
 // window's framebuffer, in the part right of the panel (viewport and scissor at x = left).
 void scene::draw(int left, int width, int height) {
+  viewport_left_ = left;
+  viewport_width_ = std::max(width, 1);
+  viewport_height_ = std::max(height, 1);
   // Under the panel (drawn over it, nearly opaque): the scene's background colour.
   glViewport(0, 0, left + width, height);
   if (left > 0) {

@@ -7,6 +7,9 @@
 
 #include <array>
 #include <chrono>
+#include <optional>
+
+#include <glm/vec2.hpp>
 #include <string>
 #include <vector>
 
@@ -15,6 +18,7 @@
 #include "energy.hpp"
 #include "gpu_cloth.hpp"
 #include "options.hpp"
+#include "picking.hpp"
 #include "renderer.hpp"
 #include "single_spring.hpp"
 #include "spring_mesh.hpp"
@@ -77,6 +81,9 @@ class scene {
  public:
   // The three stages with the parameters of the command line; nothing is loaded yet.
   explicit scene(const options& start);
+  ~scene();  // needs the GL context still current
+  scene(const scene&) = delete;
+  scene& operator=(const scene&) = delete;
 
   // Loads the renderer's shaders and texture (needs the GL context). False with error on failure.
   bool init_renderer(std::string& error);
@@ -141,6 +148,30 @@ class scene {
   // again when the cloth stepped since the last call (needs the GL context).
   const state_images& state_textures();
   bool state_textures_from_gpu() const { return state_images_from_gpu_; }
+  // The mouse on the cloth (issue 10; model.md, "drag"). At a left press, grab_particle picks
+  // the particle under the ray (picking.hpp) from the cloth's current positions (on the GPU path
+  // read back once, at the press). A pinned particle cannot be dragged: nothing is grabbed and
+  // it returns false (the press then orbits). While the button is held, drag_grabbed sets the
+  // drag target every frame: the point of the ray in the plane that faces the camera through the
+  // grabbed point (as it was at the press). release_grab ends the drag. Each prints a line.
+  bool grab_particle(const pick_ray& ray, double max_angle);
+  void drag_grabbed(const pick_ray& ray);
+  void release_grab();
+  bool grabbing() const { return cloth_stage.parameters.drag.enabled; }
+  // The dragged particle's position now (on the GPU path one texel read back), m.
+  glm::dvec3 grabbed_position();
+  // Shift + left drag: the sphere follows the cursor in the plane facing the camera through its
+  // centre (as it was at the press).
+  void start_sphere_move(const pick_ray& ray);
+  void move_sphere(const pick_ray& ray);
+  // The ray through a point of the window's framebuffer (pixels, from its top-left corner), in
+  // the scene's viewport as last drawn; and how many radians of the view one pixel spans.
+  pick_ray ray_at(double x, double y) const;
+  double radians_per_pixel() const;
+  // Where a point of the scene is drawn in the framebuffer (pixels from its top-left corner);
+  // nullopt behind the eye.
+  std::optional<glm::dvec2> framebuffer_point(const glm::dvec3& point) const;
+
   // Question 12: the OpenGL renderer (GL_RENDERER), e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
   const std::string& renderer_name() const { return renderer_name_; }
 
@@ -226,6 +257,15 @@ class scene {
   std::string backend_message_;
   backend_comparison comparison_;
   std::string renderer_name_;
+
+  // The scene's part of the framebuffer at the last draw (pixels): left edge, width, height.
+  int viewport_left_ = 0;
+  int viewport_width_ = 1;
+  int viewport_height_ = 1;
+  glm::dvec3 grab_plane_point_{0.0};    // the grabbed particle at the press, m
+  glm::dvec3 sphere_grab_offset_{0.0};  // Shift + drag: cursor point - sphere centre at the press
+  glm::dvec3 sphere_plane_point_{0.0};  // the sphere's centre at the press, m
+  GLuint probe_framebuffer_ = 0;        // reads one texel of the GPU path's position texture
 
   state_images state_images_;
   long state_images_step_ = -1;  // the cloth's step they show (-1: none yet)
