@@ -618,6 +618,72 @@ void show_spring_legend() {
   }
 }
 
+// Issue 10's presets (model.md, "Interaction and contacts"). Each resets the cloth.
+// Drape: no pins, the sphere under the cloth's centre; the cloth falls onto it.
+void drape_over_sphere(cloth_parameters& p) {
+  p.pins = pin_mode::none;
+  p.sphere = {.enabled = true, .centre = {0.0, 0.0, -0.6}, .radius = 0.3, .friction = 5.0};
+  p.tear_strain = 0.0;
+}
+// Rip: a cloth ten times lighter (m = 0.1 kg, still stable at dt = 2 ms), whose springs tear at
+// 100 % strain. Hanging from its two corners it stays whole (its weight stretches the springs at
+// the pins less than that; the default 1 kg cloth tears there even at 200 %), while the mouse
+// drag (K_d = 2000 N/m) tears it when pulled some 0.3 m away.
+void rip_preset(cloth_parameters& p) {
+  p.pins = pin_mode::corners;
+  p.dynamics.mass = 0.1;
+  p.tear_strain = 1.0;
+  p.drag.stiffness = 2000.0;
+  p.sphere.enabled = false;
+}
+
+// Issue 10: the mouse drag's spring, the sphere, tearing and self-collision.
+void edit_interaction(scene& the_scene, user_actions& actions) {
+  cloth_parameters& p = the_scene.cloth_stage.parameters;
+  fixed_lines("left drag on the cloth: pull a particle; Shift + left drag: move the sphere", 2,
+              text_style::disabled);
+  slider("drag stiffness K_d (N/m)", p.drag.stiffness, 1.0, 1e5, "%.0f", true);
+  ImGui::Checkbox("sphere", &p.sphere.enabled);
+  ImGui::SameLine();
+  if (ImGui::Button("Drape over a sphere (resets)")) {
+    drape_over_sphere(p);
+    actions.reset = true;
+  }
+  const double low = -3.0, high = 3.0;
+  ImGui::SliderScalarN("centre c (m)", ImGuiDataType_Double, &p.sphere.centre.x, 3, &low, &high,
+                       "%.2f", ImGuiSliderFlags_AlwaysClamp);
+  slider("radius r (m)", p.sphere.radius, 0.02, 2.0, "%.2f", true);
+  // mu_s dt <= 1 for every dt of the cloth's slider.
+  slider("friction mu_s (1/s)", p.sphere.friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
+
+  slider("tear strain eps (0: off)", p.tear_strain, 0.0, 3.0, "%.3f");
+  ImGui::SameLine();
+  if (ImGui::Button("Rip")) {  // the label stays short: the tooltip says what it does
+    rip_preset(p);
+    actions.reset = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("a 0.1 kg cloth that tears at 100 %% strain under the mouse (resets)");
+  fixed_lines("torn springs stay torn: R (reset) restores them", 1, text_style::disabled);
+
+  // The thickness is remembered while self-collision is off (the model's off is d = 0).
+  static double thickness = 0.02;
+  bool self_collision = p.self_collision_thickness > 0.0;
+  if (self_collision)
+    thickness = p.self_collision_thickness;
+  ImGui::Checkbox("self-collision", &self_collision);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);
+  slider("thickness d (m)", thickness, 0.001, 0.2, "%.3f", true);
+  p.self_collision_thickness = self_collision ? thickness : 0.0;
+  // The GPU paths run what gpu_cloth::supports accepts; anything else takes the cloth back to
+  // the CPU (scene::draw_scene), and this line says why beforehand.
+  if (std::string why; the_scene.backend() != cloth_backend::cpu && !gpu_cloth::supports(p, why))
+    fixed_lines(why, 2, text_style::coloured, caution_yellow);
+  else
+    fixed_lines("", 2);
+}
+
 void edit_cloth(scene& the_scene, user_actions& actions) {
   spring_mesh& stage = the_scene.cloth_stage;
   render_settings& display = the_scene.display;
@@ -679,6 +745,8 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
     if (direction != glm::dvec3(0.0))
       p.wind_direction = direction;
   }
+  if (section("Mouse, sphere, tearing, self-collision"))
+    edit_interaction(the_scene, actions);
   if (section("Q11-Q12 GPU"))
     show_gpu_path(the_scene, actions);
 }
@@ -767,7 +835,7 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
 }
 
 void build_key_help(bool& open) {
-  constexpr std::array<std::pair<const char*, const char*>, 14> keys = {{
+  constexpr std::array<std::pair<const char*, const char*>, 15> keys = {{
       {"1 2 3", "stage: spring, coupled, cloth"},
       {"Space", "pause / run"},
       {"N", "one step (pauses)"},
@@ -779,7 +847,8 @@ void build_key_help(bool& open) {
       {"G", "cloth: switch CPU <-> GPU path"},
       {"M", "cloth: measure CPU and GPU steps/s"},
       {"Esc", "quit"},
-      {"left drag", "orbit"},
+      {"left drag", "on the cloth: pull it; elsewhere: orbit"},
+      {"Shift+left drag", "move the sphere"},
       {"right drag", "pan"},
       {"wheel", "zoom"},
   }};

@@ -145,7 +145,7 @@ void scene::select_stage(stage_kind stage) {
 // ---- The cloth's path: CPU or GPU (questions 11 and 12) ---------------------------------
 
 bool scene::gpu_can_run(std::string& why) const {
-  return gpu_cloth::supports_integrator(cloth_stage.parameters.dynamics.integrator, why) &&
+  return gpu_cloth::supports(cloth_stage.parameters, why) &&
          gpu_cloth::check_grid_size(cloth_stage.grid_size(), why);
 }
 
@@ -355,10 +355,9 @@ void scene::single_step() {
 
 void scene::draw_scene(double frame_seconds, int left, int width, int height) {
   if (backend_ == cloth_backend::gpu) {
-    // The integrator can change while the cloth is on the GPU (the command line, or a choice
-    // the panel offers): one the GPU does not run sends the cloth back to the CPU.
-    if (std::string why;
-        !gpu_cloth::supports_integrator(cloth_stage.parameters.dynamics.integrator, why))
+    // The integrator, tearing or self-collision can change while the cloth is on the GPU (the
+    // panel): what the GPU does not run (gpu_cloth::supports) sends the cloth back to the CPU.
+    if (std::string why; !gpu_cloth::supports(cloth_stage.parameters, why))
       fall_back_to_cpu(why);
   }
   const int steps = steps_for_this_frame(frame_seconds);
