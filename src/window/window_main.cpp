@@ -306,8 +306,10 @@ void apply_actions(const user_actions& actions, scene& the_scene, bool& show_hel
     show_help = !show_help;
   if (actions.switch_cloth_backend)
     the_scene.toggle_cloth_backend();
+  if (actions.select_cloth_backend)
+    the_scene.switch_cloth_backend(*actions.select_cloth_backend);
   if (actions.measure_backends)
-    the_scene.measure_both_backends(steps_per_backend_measurement);
+    the_scene.measure_backends(steps_per_backend_measurement);
   if (actions.quit)
     context.request_close();
 }
@@ -341,6 +343,8 @@ int main(int argc, char** argv) {
   the_scene.load_model();
   if (start.backend == backend_kind::gpu)
     the_scene.switch_cloth_backend(cloth_backend::gpu);  // says why when it cannot
+  else if (start.backend == backend_kind::gpu_compute)
+    the_scene.switch_cloth_backend(cloth_backend::gpu_compute);
 
   const imgui_session ui(context->window());
   mouse_control mouse;
