@@ -37,6 +37,12 @@ const glm::vec3 cloth_back_tint = {0.78f, 0.84f, 0.95f};  // the back side is sl
 const glm::vec3 mass_colour = {0.16f, 0.50f, 0.78f};
 const glm::vec3 fixed_point_colour = {0.55f, 0.55f, 0.57f};
 const glm::vec3 pin_colour = {0.25f, 0.25f, 0.28f};
+const glm::vec3 obstacle_colour = {0.78f, 0.36f, 0.24f};  // the sphere the cloth drapes over
+// The cloth rests with its particles on the obstacle sphere, and its flat triangles cut under
+// the surface between them (by up to a fifth of a cell on a stretched cloth): the sphere is drawn
+// a little smaller and its depth pushed back by a fraction of the cloth's spacing h.
+constexpr float obstacle_drawn_fraction = 0.99f;
+constexpr float obstacle_depth_push = 0.4f;  // of h, at most a fifth of the radius
 const glm::vec4 coil_colour = {0.22f, 0.24f, 0.28f, 1.0f};
 constexpr float light_fraction_in_shadow = 0.62f;  // of the ground's colour, under the cloth
 const glm::vec4 wireframe_colour = {0.10f, 0.08f, 0.08f, 0.55f};
@@ -186,13 +192,14 @@ struct renderer::impl {
                            const glm::vec2& centre, float light_fraction);
   void draw_ground(const frame& f, float height, const glm::vec2& centre);
   void draw_blob_shadows(const frame& f, float height);
-  void draw_spheres(const frame& f);
+  void draw_spheres(const frame& f, float depth_push = 0.0f);
   void draw_chain(const frame& f, const particle_system& particles, std::span<const spring> springs,
                   const dynamics_parameters& dynamics, double stiffness, bool show_floor);
   void draw_cloth(const frame& f, const spring_mesh& cloth, const render_settings& settings,
                   const cloth_programs& programs, GLuint vao);
   void add_sphere(const glm::vec3& centre, float radius, const glm::vec3& colour);
   void draw_wind_arrow(const frame& f, const spring_mesh& cloth);
+  void draw_obstacle_shadow(const frame& f, const sphere_parameters& sphere, float ground_height);
 };
 
 renderer::impl::~impl() {
@@ -523,17 +530,33 @@ void renderer::impl::draw_blob_shadows(const frame& f, float height) {
   glDisable(GL_BLEND);
 }
 
+// The obstacle sphere's shadow: a soft disc where the sphere's centre projects onto the ground
+// along the light.
+void renderer::impl::draw_obstacle_shadow(const frame& f, const sphere_parameters& sphere,
+                                          float ground_height) {
+  const glm::vec3 centre(sphere.centre);
+  const auto radius = static_cast<float>(sphere.radius);
+  const float height = centre.z - ground_height;
+  if (height < -radius)
+    return;  // entirely under the ground
+  const glm::vec3 on_ground = centre - std::max(height, 0.0f) / light_direction.z * light_direction;
+  blobs.assign(1, glm::vec4(on_ground.x, on_ground.y, 1.3f * radius + 0.1f * height,
+                            0.55f / (1.0f + std::max(height - radius, 0.0f))));
+  draw_blob_shadows(f, ground_height);
+}
+
 void renderer::impl::add_sphere(const glm::vec3& centre, float radius, const glm::vec3& colour) {
   instances.insert(instances.end(),
                    {centre.x, centre.y, centre.z, radius, colour.r, colour.g, colour.b});
 }
 
-void renderer::impl::draw_spheres(const frame& f) {
+void renderer::impl::draw_spheres(const frame& f, float depth_push) {
   if (instances.empty())
     return;
   sphere_instances.upload(instances);
   spheres_program.use();
   set_uniform(spheres_program, "view_projection", f.view_projection);
+  set_uniform(spheres_program, "depth_push", depth_push);
   set_uniform(spheres_program, "use_texture", 0);
   set_uniform(spheres_program, "light_direction", light_direction);
   set_uniform(spheres_program, "eye_position", f.eye);
@@ -605,8 +628,11 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
                                 GLuint vao) {
   const bool show_ground = cloth.parameters.ground_enabled && settings.show_ground;
   const auto ground_height = static_cast<float>(cloth.parameters.ground_height);
-  if (show_ground)
+  if (show_ground) {
     draw_ground(f, ground_height, {0.0f, 0.0f});
+    if (cloth.parameters.sphere.enabled)
+      draw_obstacle_shadow(f, cloth.parameters.sphere, ground_height);
+  }
 
   const auto draw_range = [](GLenum mode, const index_range& range) {
     glDrawElements(mode, static_cast<GLsizei>(range.count), GL_UNSIGNED_INT,
@@ -679,6 +705,15 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
 
   // Pinned particles never move: their positions in `cloth` are valid on the GPU path too.
   instances.clear();
+  if (cloth.parameters.sphere.enabled) {
+    const sphere_parameters& sphere = cloth.parameters.sphere;
+    const auto radius = static_cast<float>(sphere.radius);
+    const float spacing = static_cast<float>(cloth.parameters.side_length) /
+                          static_cast<float>(std::max(cloth.grid_size() - 1, 1));
+    add_sphere(glm::vec3(sphere.centre), obstacle_drawn_fraction * radius, obstacle_colour);
+    draw_spheres(f, std::min(obstacle_depth_push * spacing, 0.2f * radius));
+    instances.clear();
+  }
   const particle_system& particles = cloth.particles();
   for (std::size_t k = 0; k < particles.size(); ++k) {
     if (particles.is_fixed[k])

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -293,6 +294,48 @@ TEST_F(RenderTest, ClothBackFacesAreDrawnWithTheirTint) {
   EXPECT_GT(glm::length(back - background), 30.0f);
   // The back's tint is bluer than the front's colour of the same thread.
   EXPECT_GT(back.b / back.r, 1.1f * front.b / front.r);
+}
+
+// The obstacle sphere (model.md, "sphere") is drawn with the cloth when it is on: lit, in its
+// own colour, with a soft shadow on the ground; not drawn when it is off.
+TEST_F(RenderTest, ClothSphereIsDrawnLitWithItsShadow) {
+  spring_mesh cloth;  // flat at z = 0, beside the sphere
+  cloth.parameters.sphere = {.enabled = true, .centre = {1.2, 0.0, -0.5}, .radius = 0.3};
+  camera view;
+  view.target = glm::vec3(cloth.parameters.sphere.centre);
+  view.pitch = 0.1f;  // from below the cloth's plane: nothing between the eye and the sphere
+  const auto draw = [&](bool sphere_on) {
+    cloth.parameters.sphere.enabled = sphere_on;
+    renderer_.draw(cloth, view, {}, width, height);
+    return image_testing::read_framebuffer(width, height);
+  };
+  const rgba_image with = draw(true);
+  const rgba_image without = draw(false);
+  const auto is_obstacle = [](const rgba_image& image, int x, int y) {
+    const int r = image.channel(x, y, 0);
+    const int g = image.channel(x, y, 1);
+    const int b = image.channel(x, y, 2);
+    return r > 40 && 10 * r > 16 * g && r > 2 * b;  // terracotta, lit or in its own shade
+  };
+  EXPECT_TRUE(is_obstacle(with, width / 2, height / 2)) << "no sphere at the centre of the view";
+  EXPECT_FALSE(is_obstacle(without, width / 2, height / 2)) << "a sphere drawn while off";
+  // Lit: its shading varies across the disc (a flat disc would have one colour).
+  int darkest = 255;
+  int brightest = 0;
+  std::size_t shadowed = 0;  // grey ground pixels darker with the sphere than without it
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (is_obstacle(with, x, y)) {
+        darkest = std::min<int>(darkest, with.channel(x, y, 0));
+        brightest = std::max<int>(brightest, with.channel(x, y, 0));
+      } else if (!is_obstacle(without, x, y) &&
+                 with.channel(x, y, 1) + 12 < without.channel(x, y, 1)) {
+        ++shadowed;
+      }
+    }
+  }
+  EXPECT_GT(brightest - darkest, 50) << "the sphere is not shaded";
+  EXPECT_GT(shadowed, 300u) << "no shadow under the sphere";
 }
 
 TEST_F(RenderTest, SpringStagesAreNotBlank) {
