@@ -580,11 +580,10 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
     return steps_per_second > 0.0 ? format("%.0f", steps_per_second) : std::string("-");
   };
   if (!comparison.measured) {
-    fixed_lines("N = -   steps/s CPU: -   GPU: -   compute: -   (not measured)", 1,
-                text_style::disabled);
+    fixed_lines("N = -  steps/s: CPU -  GPU -  compute -  (not measured)", 1, text_style::disabled);
     fixed_lines("", 1);
   } else {
-    fixed_lines(format("N = %d   steps/s CPU: %s   GPU: %s   compute: %s", comparison.grid_size,
+    fixed_lines(format("N = %d  steps/s: CPU %s  GPU %s  compute %s", comparison.grid_size,
                        rate(comparison.cpu_steps_per_second).c_str(),
                        rate(comparison.gpu_steps_per_second).c_str(),
                        rate(comparison.compute_steps_per_second).c_str()),
@@ -830,12 +829,12 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos({0.0f, 0.0f}, ImGuiCond_Always);
   ImGui::SetNextWindowSize({panel_width * ui_scale(), io.DisplaySize.y}, ImGuiCond_Always);
-  float covered_width = 0.0f;  // collapsed: the scene takes the whole window
+  float covered_width = 0.0f;           // collapsed: the scene takes the whole window
   the_scene.panel_needs_state = false;  // until a section that shows the state is open
   if (ImGui::Begin("clothlab: mass-spring lab", nullptr,
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
     covered_width = panel_width * ui_scale();
-    show_readouts(the_scene);             // always in sight; the sections below scroll
+    show_readouts(the_scene);  // always in sight; the sections below scroll
     ImGui::BeginChild("sections");
     ImGui::PushItemWidth(-170.0f * ui_scale());  // room for the labels on the right
     if (section("Q1 stage and time")) {

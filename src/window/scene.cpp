@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <utility>
 
 #include "gl.hpp"
-#include "render_geometry.hpp"  // chain_floor_height
+#include "render_geometry.hpp"
+#include "shader.hpp"  // shader_path  // chain_floor_height
 #include "stability.hpp"
 
 namespace clothlab {
@@ -58,7 +60,10 @@ bool scene::init_renderer(std::string& error) {
   if (const GLubyte* name = glGetString(GL_RENDERER); name != nullptr)
     renderer_name_ = reinterpret_cast<const char*>(name);
   compute_unavailable_.clear();
-  gpu_cloth_compute::available(compute_unavailable_);
+  if (gpu_cloth_compute::available(compute_unavailable_) &&
+      !std::filesystem::exists(shader_path("gpu_compute_step.comp")))
+    compute_unavailable_ = "this copy of the lab has no compute path (" +
+                           shader_path("gpu_compute_step.comp").string() + " is missing)";
   return renderer_.init(error);
 }
 
@@ -370,11 +375,14 @@ void scene::release_grab() {
     return;
   const glm::dvec3 position = grabbed_position();
   drag.enabled = false;
+  std::size_t springs = 0;  // fewer than at the start when the cloth tore
+  for (const spring_family family : all_spring_families)
+    springs += cloth_stage.springs(family).size();
   std::printf(
       "clothlab-window: released particle (%d, %d) at (%.3f, %.3f, %.3f), target (%.3f, %.3f, "
-      "%.3f)\n",
+      "%.3f), %zu springs\n",
       drag.ku, drag.kv, position.x, position.y, position.z, drag.target.x, drag.target.y,
-      drag.target.z);
+      drag.target.z, springs);
   std::fflush(stdout);
 }
 

@@ -141,8 +141,10 @@ class mouse_control {
     const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
     const bool over_panel = ImGui::GetIO().WantCaptureMouse;
 
-    if (left && left_drag_ == left_drag::none && !left_was_down_ && !over_panel)
+    if (left && left_drag_ == left_drag::none && !left_was_down_ && !over_panel) {
       left_drag_ = start_left_drag(window, the_scene, the_scene.ray_at(pixel_x, pixel_y));
+      print_camera("started", the_scene.view);
+    }
     if (left) {
       switch (left_drag_) {
         case left_drag::grab:
@@ -195,19 +197,23 @@ class mouse_control {
   // Ends the drag with a line saying what it did and where the camera is (the window tests read
   // it: a drag on the cloth leaves the camera where it was).
   void end_left_drag(scene& the_scene) {
-    const char* what = "orbit";
     if (left_drag_ == left_drag::grab) {
       the_scene.release_grab();
-      what = "grab";
     } else if (left_drag_ == left_drag::sphere) {
       const glm::dvec3& c = the_scene.cloth_stage.parameters.sphere.centre;
       std::printf("clothlab-window: sphere moved to (%.3f, %.3f, %.3f)\n", c.x, c.y, c.z);
-      what = "sphere";
     }
-    std::printf("clothlab-window: left drag ended (%s): camera yaw %.4f, pitch %.4f\n", what,
-                the_scene.view.yaw, the_scene.view.pitch);
-    std::fflush(stdout);
+    print_camera("ended", the_scene.view);
     left_drag_ = left_drag::none;
+  }
+
+  void print_camera(const char* when, const camera& view) const {
+    const char* what = left_drag_ == left_drag::grab     ? "grab"
+                       : left_drag_ == left_drag::sphere ? "sphere"
+                                                         : "orbit";
+    std::printf("clothlab-window: left drag %s (%s): camera yaw %.4f, pitch %.4f\n", when, what,
+                view.yaw, view.pitch);
+    std::fflush(stdout);
   }
 
   double last_x_ = 0.0;
