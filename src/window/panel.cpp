@@ -455,7 +455,7 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool clo
 constexpr double max_spring_time_step = 0.1;  // s, spring and chain
 constexpr double max_cloth_time_step = 0.02;  // s
 constexpr double max_stiffness = 1e5;         // N/m: far past every stability limit
-// N: stronger wind folds the default cloth through itself (there is no self-collision).
+// N: stronger wind folds the default cloth through itself (without self-collision).
 constexpr double max_wind_strength = 20.0;
 
 void edit_single_spring(scene& the_scene, user_actions& actions) {
