@@ -352,7 +352,8 @@ case "$scenario" in
     ;;
   gpu_switch)
     # The cloth runs a while on the CPU, goes to the GPU while running, is drawn from the GPU's
-    # textures, and comes back to the CPU, still running.
+    # textures, goes on to the compute path (drawn from its buffers), and comes back to the CPU,
+    # still running.
     sleep 1
     press g
     wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
@@ -360,8 +361,13 @@ case "$scenario" in
     on_gpu=$(screenshot_of cloth)
     check_image "$on_gpu" 1280 800 200
     check_cloth_drawn "$on_gpu"
+    press g  # the compute path, where the context has OpenGL 4.3 (Xvfb's llvmpipe has 4.5)
+    wait_for_log "cloth: GPU -> GPU compute at step" || fail "G did not take the cloth to the compute path"
+    sleep 1
+    on_compute=$(screenshot_of cloth)
+    check_cloth_drawn "$on_compute"
     press g
-    wait_for_log "cloth: GPU -> CPU at step" || fail "G did not bring the cloth back"
+    wait_for_log "cloth: GPU compute -> CPU at step" || fail "G did not bring the cloth back"
     sleep 1
     grep -q "diverged" window.log && fail "the cloth diverged across the switches"
     on_cpu=$(screenshot_of cloth)
