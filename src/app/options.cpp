@@ -579,10 +579,10 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       throw usage_error{"--obj " + o.obj_path +
                         ": the OBJ is the cloth's; use it with --stage cloth"};
     }
-    if (!o.headless &&
-        (o.backend == backend_kind::cpu_parallel || o.backend == backend_kind::gpu_compute)) {
+    if (!o.headless && o.backend == backend_kind::cpu_parallel) {
       throw usage_error{"--backend " + backend +
-                        ": headless only; the window runs the cpu and gpu paths (key G)"};
+                        ": headless only; the window runs the cpu, gpu and gpu-compute paths "
+                        "(key G)"};
     }
     if (!o.headless && app.count("--gl") > 0)
       throw usage_error{"--gl: only with --headless (the window has its own context)"};

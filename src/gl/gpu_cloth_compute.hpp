@@ -49,6 +49,10 @@ class gpu_cloth_compute {
   // read-back). Throws std::out_of_range for k outside the grid.
   particle_state read_particle(std::size_t k) const;
   int grid_size() const { return grid_size_; }
+  // The buffers of the current state (one vec4 per particle, k = ku + N kv; positions' w: 1 if
+  // pinned), e.g. for the window to copy into textures and draw without reading back.
+  GLuint position_buffer() const { return position_[read_]; }
+  GLuint normal_buffer() const { return normal_; }
 
  private:
   void release();

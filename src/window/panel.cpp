@@ -132,13 +132,22 @@ void show_readouts(const scene& the_scene) {
               the_scene.steps_per_second() * time_step, the_scene.frames_per_second());
 
   // The cloth's path: G and M act on the cloth whatever stage is shown.
-  const bool on_gpu = the_scene.backend() == cloth_backend::gpu;
   if (the_scene.stage() == stage_kind::cloth) {
-    if (on_gpu)
-      fixed_lines("cloth on the GPU (float, fragment shaders)   G: CPU", 1, text_style::coloured,
-                  quiet_green);
-    else
-      fixed_lines("cloth on the CPU (double)   G: GPU", 1);
+    std::string why_not;
+    switch (the_scene.backend()) {
+      case cloth_backend::gpu:
+        fixed_lines(std::string("cloth on the GPU (float, fragment shaders)   G: ") +
+                        (the_scene.compute_offered(why_not) ? "compute" : "CPU"),
+                    1, text_style::coloured, quiet_green);
+        break;
+      case cloth_backend::gpu_compute:
+        fixed_lines("cloth on the GPU (float, compute shaders)   G: CPU", 1, text_style::coloured,
+                    quiet_green);
+        break;
+      case cloth_backend::cpu:
+        fixed_lines("cloth on the CPU (double)   G: GPU", 1);
+        break;
+    }
   } else {
     fixed_lines(std::string("G, M act on the cloth (stage 3), now on the ") +
                     backend_name(the_scene.backend()),
@@ -446,7 +455,7 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool clo
 constexpr double max_spring_time_step = 0.1;  // s, spring and chain
 constexpr double max_cloth_time_step = 0.02;  // s
 constexpr double max_stiffness = 1e5;         // N/m: far past every stability limit
-// N: stronger wind folds the default cloth through itself (there is no self-collision).
+// N: stronger wind folds the default cloth through itself (without self-collision).
 constexpr double max_wind_strength = 20.0;
 
 void edit_single_spring(scene& the_scene, user_actions& actions) {
@@ -474,6 +483,7 @@ void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
 // Question 11: the three state textures, side by side, texel (ku, kv) = particle ku + N kv; the
 // values of the texel under the mouse in a tooltip.
 void show_state_textures(scene& the_scene) {
+  the_scene.panel_needs_state = true;
   const state_images& images = the_scene.state_textures();
   fixed_lines(the_scene.state_textures_from_gpu()
                   ? "GPU path: its state textures, read back"
@@ -528,51 +538,75 @@ void show_renderer(const scene& the_scene) {
     fixed_lines("a hardware GPU", 1, text_style::disabled);
 }
 
-// Questions 11 and 12: which path runs the cloth, the switch, and both paths' speeds.
+// Questions 11 and 12: which path runs the cloth, the switch, and every path's speed.
 void show_gpu_path(scene& the_scene, user_actions& actions) {
-  const bool on_gpu = the_scene.backend() == cloth_backend::gpu;
-  if (ImGui::RadioButton("CPU (double)", !on_gpu) && on_gpu)
-    actions.switch_cloth_backend = true;
-  ImGui::SameLine();
-  if (ImGui::RadioButton("GPU (float, fragment shaders)", on_gpu) && !on_gpu)
-    actions.switch_cloth_backend = true;
+  const cloth_backend backend = the_scene.backend();
+  constexpr std::array<std::pair<cloth_backend, const char*>, 3> paths = {{
+      {cloth_backend::cpu, "CPU (double)"},
+      {cloth_backend::gpu, "GPU fragment"},
+      {cloth_backend::gpu_compute, "GPU compute"},
+  }};
+  std::string compute_why;
+  const bool compute = the_scene.compute_offered(compute_why);
+  for (const auto& [path, label] : paths) {
+    if (path != cloth_backend::cpu)
+      ImGui::SameLine();
+    ImGui::BeginDisabled(path == cloth_backend::gpu_compute && !compute);
+    if (ImGui::RadioButton(label, backend == path) && backend != path)
+      actions.select_cloth_backend = path;
+    ImGui::EndDisabled();
+  }
   // Fixed lines: a hint, a measurement or a refusal appearing moves nothing below.
-  if (std::string why; !the_scene.gpu_can_run(why))
+  if (std::string why; !the_scene.gpu_can_run(cloth_backend::gpu, why))
     fixed_lines("Not on the GPU: " + why, 2, text_style::coloured, caution_yellow);
+  else if (!compute)
+    fixed_lines("GPU compute greyed: " + compute_why, 2, text_style::disabled);
   else
-    fixed_lines("", 2);
+    fixed_lines(
+        "fragment: the handout's path (textures); compute: OpenGL 4.3 compute shaders "
+        "over buffers (issue 9)",
+        2, text_style::disabled);
 
   ImGui::Text("live: %s, %.0f steps/s (stepping alone)", backend_name(the_scene.backend()),
               the_scene.stepping_rate());
   show_renderer(the_scene);
   const std::string measure_label =
-      "Measure both (M): " + std::to_string(steps_per_backend_measurement) +
+      "Measure all (M): " + std::to_string(steps_per_backend_measurement) +
       " steps each, on copies";
   if (ImGui::Button(measure_label.c_str()))
     actions.measure_backends = true;
   const backend_comparison& comparison = the_scene.comparison();
+  const auto rate = [](double steps_per_second) {
+    return steps_per_second > 0.0 ? format("%.0f", steps_per_second) : std::string("-");
+  };
   if (!comparison.measured) {
-    fixed_lines("N = -   steps/s CPU: -   GPU: -   (not measured yet)", 1, text_style::disabled);
+    fixed_lines("N = -  steps/s: CPU -  GPU -  compute -  (not measured)", 1, text_style::disabled);
     fixed_lines("", 1);
-  } else if (comparison.gpu_steps_per_second > 0.0) {
-    fixed_lines(
-        format("N = %d   steps/s CPU: %.0f   GPU: %.0f   (GPU/CPU = %.2f x)", comparison.grid_size,
-               comparison.cpu_steps_per_second, comparison.gpu_steps_per_second,
-               comparison.gpu_steps_per_second / comparison.cpu_steps_per_second),
-        1);
   } else {
-    fixed_lines(format("N = %d   steps/s CPU: %.0f   GPU: -", comparison.grid_size,
-                       comparison.cpu_steps_per_second),
+    fixed_lines(format("N = %d  steps/s: CPU %s  GPU %s  compute %s", comparison.grid_size,
+                       rate(comparison.cpu_steps_per_second).c_str(),
+                       rate(comparison.gpu_steps_per_second).c_str(),
+                       rate(comparison.compute_steps_per_second).c_str()),
                 1);
-  }
-  if (comparison.measured) {
+    const double cpu = comparison.cpu_steps_per_second;
     if (comparison.gpu_steps_per_second <= 0.0)
       fixed_lines(comparison.gpu_error, 1, text_style::coloured, warning_red);
     else if (comparison.grid_size != the_scene.cloth_stage.grid_size())
       fixed_lines("measured for another N: measure again", 1, text_style::disabled);
+    else if (comparison.compute_steps_per_second > 0.0)
+      fixed_lines(
+          format("GPU/CPU = %.2f x   compute/CPU = %.2f x", comparison.gpu_steps_per_second / cpu,
+                 comparison.compute_steps_per_second / cpu),
+          1);
     else
-      fixed_lines("", 1);
+      fixed_lines(format("GPU/CPU = %.2f x   compute: %s", comparison.gpu_steps_per_second / cpu,
+                         comparison.compute_error.c_str()),
+                  1);
   }
+  fixed_lines(format("read-backs of the GPU state so far: %ld (only for this panel's images and "
+                     "the energy plot, at most %.0f/s)",
+                     the_scene.readbacks(), scene::max_readbacks_per_second),
+              2, text_style::disabled);
   show_state_textures(the_scene);
   ImGui::PushTextWrapPos(0.0f);
   // BEGIN TEACHER: the answer to question 11, which the student copy leaves to the student
@@ -583,8 +617,8 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
       "runs one fragment per particle, which sums its springs, gravity and wind, integrates, "
       "applies the ground and writes the new state into the other copy; a second pass writes the "
       "normals. The CPU sends a flat N x N grid once; the vertex shader fetches each vertex's "
-      "position and normal from the textures. The state comes back to the CPU once per frame, "
-      "for the divergence check and the energy.");
+      "position and normal from the textures. The divergence check runs on the GPU; the state "
+      "comes back to the CPU only for these images and the energy plot.");
   // END TEACHER
   ImGui::PopTextWrapPos();
 }
@@ -618,12 +652,81 @@ void show_spring_legend() {
   }
 }
 
+// Issue 10's presets (model.md, "Interaction and contacts"). Each resets the cloth.
+// Drape: no pins, the sphere under the cloth's centre; the cloth falls onto it. The friction is
+// high (mu_s dt = 0.08 at dt = 2 ms): the model's friction only damps the sliding (there is no
+// sticking), and with the default 5/s the draped cloth slides off within seconds, sooner on the
+// GPU paths (float rounding breaks the symmetry sooner).
+void drape_over_sphere(cloth_parameters& p) {
+  p.pins = pin_mode::none;
+  p.sphere = {.enabled = true, .centre = {0.0, 0.0, -0.6}, .radius = 0.3, .friction = 40.0};
+  p.tear_strain = 0.0;
+}
+// Rip: a cloth ten times lighter (m = 0.1 kg, still stable at dt = 2 ms), whose springs tear at
+// 100 % strain. Hanging from its two corners it stays whole (its weight stretches the springs at
+// the pins less than that; the default 1 kg cloth tears there even at 200 %), while the mouse
+// drag (K_d = 2000 N/m) tears it when pulled some 0.3 m away.
+void rip_preset(cloth_parameters& p) {
+  p.pins = pin_mode::corners;
+  p.dynamics.mass = 0.1;
+  p.tear_strain = 1.0;
+  p.drag.stiffness = 2000.0;
+  p.sphere.enabled = false;
+}
+
+// Issue 10: the mouse drag's spring, the sphere, tearing and self-collision.
+void edit_interaction(scene& the_scene, user_actions& actions) {
+  cloth_parameters& p = the_scene.cloth_stage.parameters;
+  fixed_lines("left drag on the cloth: pull a particle; Shift + left drag: move the sphere", 2,
+              text_style::disabled);
+  slider("drag stiffness K_d (N/m)", p.drag.stiffness, 1.0, 1e5, "%.0f", true);
+  ImGui::Checkbox("sphere", &p.sphere.enabled);
+  ImGui::SameLine();
+  if (ImGui::Button("Drape over a sphere (resets)")) {
+    drape_over_sphere(p);
+    actions.reset = true;
+  }
+  const double low = -3.0, high = 3.0;
+  ImGui::SliderScalarN("centre c (m)", ImGuiDataType_Double, &p.sphere.centre.x, 3, &low, &high,
+                       "%.2f", ImGuiSliderFlags_AlwaysClamp);
+  slider("radius r (m)", p.sphere.radius, 0.02, 2.0, "%.2f", true);
+  // mu_s dt <= 1 for every dt of the cloth's slider.
+  slider("friction mu_s (1/s)", p.sphere.friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
+
+  slider("tear strain eps (0: off)", p.tear_strain, 0.0, 3.0, "%.3f");
+  ImGui::SameLine();
+  if (ImGui::Button("Rip")) {  // the label stays short: the tooltip says what it does
+    rip_preset(p);
+    actions.reset = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("a 0.1 kg cloth that tears at 100 %% strain under the mouse (resets)");
+  fixed_lines("torn springs stay torn: R (reset) restores them", 1, text_style::disabled);
+
+  // The thickness is remembered while self-collision is off (the model's off is d = 0).
+  static double thickness = 0.02;
+  bool self_collision = p.self_collision_thickness > 0.0;
+  if (self_collision)
+    thickness = p.self_collision_thickness;
+  ImGui::Checkbox("self-collision", &self_collision);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);
+  slider("thickness d (m)", thickness, 0.001, 0.2, "%.3f", true);
+  p.self_collision_thickness = self_collision ? thickness : 0.0;
+  // The GPU paths run what gpu_cloth::supports accepts; anything else takes the cloth back to
+  // the CPU (scene::draw_scene), and this line says why beforehand.
+  if (std::string why; the_scene.backend() != cloth_backend::cpu && !gpu_cloth::supports(p, why))
+    fixed_lines(why, 2, text_style::coloured, caution_yellow);
+  else
+    fixed_lines("", 2);
+}
+
 void edit_cloth(scene& the_scene, user_actions& actions) {
   spring_mesh& stage = the_scene.cloth_stage;
   render_settings& display = the_scene.display;
   cloth_parameters& p = stage.parameters;
   if (section("Q4 dt, damping")) {
-    edit_dynamics(p.dynamics, max_cloth_time_step, true, the_scene.backend() == cloth_backend::gpu);
+    edit_dynamics(p.dynamics, max_cloth_time_step, true, the_scene.backend() != cloth_backend::cpu);
     show_stability(estimate_stability(stage));
   }
   if (section("Q8 springs: three stiffnesses")) {
@@ -679,6 +782,8 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
     if (direction != glm::dvec3(0.0))
       p.wind_direction = direction;
   }
+  if (section("Mouse, sphere, tearing, self-collision"))
+    edit_interaction(the_scene, actions);
   if (section("Q11-Q12 GPU"))
     show_gpu_path(the_scene, actions);
 }
@@ -727,7 +832,8 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos({0.0f, 0.0f}, ImGuiCond_Always);
   ImGui::SetNextWindowSize({panel_width * ui_scale(), io.DisplaySize.y}, ImGuiCond_Always);
-  float covered_width = 0.0f;  // collapsed: the scene takes the whole window
+  float covered_width = 0.0f;           // collapsed: the scene takes the whole window
+  the_scene.panel_needs_state = false;  // until a section that shows the state is open
   if (ImGui::Begin("clothlab: mass-spring lab", nullptr,
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
     covered_width = panel_width * ui_scale();
@@ -749,8 +855,10 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
         edit_cloth(the_scene, actions);
         break;
     }
-    if (section("Q4 energy (last frames)"))
+    if (section("Q4 energy (last frames)")) {
+      the_scene.panel_needs_state = true;
       show_energy(the_scene);
+    }
     if (ImGui::CollapsingHeader("Q4 stability map (dt x K)"))
       show_stability_map(the_scene);
     if (section("Display"))
@@ -767,7 +875,7 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
 }
 
 void build_key_help(bool& open) {
-  constexpr std::array<std::pair<const char*, const char*>, 14> keys = {{
+  constexpr std::array<std::pair<const char*, const char*>, 15> keys = {{
       {"1 2 3", "stage: spring, coupled, cloth"},
       {"Space", "pause / run"},
       {"N", "one step (pauses)"},
@@ -776,10 +884,11 @@ void build_key_help(bool& open) {
       {"P", "screenshot (PNG in the working directory)"},
       {"V", "reset the view"},
       {"H", "this help"},
-      {"G", "cloth: switch CPU <-> GPU path"},
-      {"M", "cloth: measure CPU and GPU steps/s"},
+      {"G", "cloth: next path (CPU, GPU fragment, GPU compute)"},
+      {"M", "cloth: measure every path's steps/s"},
       {"Esc", "quit"},
-      {"left drag", "orbit"},
+      {"left drag", "on the cloth: pull it; elsewhere: orbit"},
+      {"Shift+left drag", "move the sphere"},
       {"right drag", "pan"},
       {"wheel", "zoom"},
   }};

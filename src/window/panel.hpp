@@ -19,12 +19,13 @@ struct user_actions {
   bool toggle_wireframe = false;           // W
   bool screenshot = false;                 // P
   bool toggle_help = false;                // H
-  bool switch_cloth_backend = false;       // G: the cloth CPU <-> GPU (questions 11, 12)
-  bool measure_backends = false;           // question 12: time both paths on copies
-  bool quit = false;                       // Esc
+  bool switch_cloth_backend = false;       // G: the cloth's next path (questions 11, 12)
+  std::optional<cloth_backend> select_cloth_backend;  // the panel's choice of path
+  bool measure_backends = false;                      // question 12: time every path on copies
+  bool quit = false;                                  // Esc
 };
 
-inline constexpr int steps_per_backend_measurement = 200;  // question 12's "measure both"
+inline constexpr int steps_per_backend_measurement = 200;  // question 12's "measure"
 // In ImGui's (screen) units at the default 13 px font, at the window's left; scaled with the
 // font on HiDPI screens (ui_scale).
 inline constexpr float panel_width = 410.0f;

@@ -1,15 +1,18 @@
 #include "scene.hpp"
 
 #include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <utility>
 
 #include "gl.hpp"
-#include "render_geometry.hpp"  // chain_floor_height
+#include "render_geometry.hpp"
+#include "shader.hpp"  // shader_path  // chain_floor_height
 #include "stability.hpp"
 
 namespace clothlab {
@@ -28,7 +31,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 const char* backend_name(cloth_backend backend) {
-  return backend == cloth_backend::gpu ? "GPU" : "CPU";
+  switch (backend) {
+    case cloth_backend::gpu:
+      return "GPU";
+    case cloth_backend::gpu_compute:
+      return "GPU compute";
+    case cloth_backend::cpu:
+      break;
+  }
+  return "CPU";
 }
 
 scene::scene(const options& start)
@@ -38,9 +49,21 @@ scene::scene(const options& start)
       view(camera::default_for(start.stage)),
       stage_(start.stage) {}
 
+scene::~scene() {
+  if (probe_framebuffer_ != 0)
+    glDeleteFramebuffers(1, &probe_framebuffer_);
+  const GLuint textures[] = {compute_position_texture_, compute_normal_texture_};
+  glDeleteTextures(2, textures);
+}
+
 bool scene::init_renderer(std::string& error) {
   if (const GLubyte* name = glGetString(GL_RENDERER); name != nullptr)
     renderer_name_ = reinterpret_cast<const char*>(name);
+  compute_unavailable_.clear();
+  if (gpu_cloth_compute::available(compute_unavailable_) &&
+      !std::filesystem::exists(shader_path("gpu_compute_step.comp")))
+    compute_unavailable_ = "this copy of the lab has no compute path (" +
+                           shader_path("gpu_compute_step.comp").string() + " is missing)";
   return renderer_.init(error);
 }
 
@@ -49,8 +72,7 @@ bool scene::init_renderer(std::string& error) {
 // CPU as the CPU path does (central differences, model.md).
 const state_images& scene::state_textures() {
   const long step = status_[static_cast<int>(stage_kind::cloth)].step;
-  const bool from_gpu = backend_ == cloth_backend::gpu && gpu_.is_loaded() &&
-                        gpu_.grid_size() == cloth_stage.grid_size();
+  const bool from_gpu = cloth_on_gpu();
   const int n = cloth_stage.grid_size();
   if (step == state_images_step_ && from_gpu == state_images_from_gpu_ &&
       state_images_.grid_size() == n)
@@ -59,8 +81,11 @@ const state_images& scene::state_textures() {
   const auto texels = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
   normal_scratch_.resize(3 * texels);
   if (from_gpu) {
+    if (backend_ == cloth_backend::gpu_compute)
+      copy_compute_state_to_textures();
     texel_scratch_.resize(4 * texels);
-    glBindTexture(GL_TEXTURE_2D, gpu_.normal_texture());
+    glBindTexture(GL_TEXTURE_2D,
+                  backend_ == cloth_backend::gpu ? gpu_.normal_texture() : compute_normal_texture_);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texel_scratch_.data());
     glBindTexture(GL_TEXTURE_2D, 0);
@@ -138,26 +163,59 @@ void scene::select_stage(stage_kind stage) {
 
 // ---- The cloth's path: CPU or GPU (questions 11 and 12) ---------------------------------
 
-bool scene::gpu_can_run(std::string& why) const {
-  return gpu_cloth::supports_integrator(cloth_stage.parameters.dynamics.integrator, why) &&
-         gpu_cloth::check_grid_size(cloth_stage.grid_size(), why);
+bool scene::gpu_can_run(cloth_backend target, std::string& why) const {
+  if (!gpu_cloth::supports(cloth_stage.parameters, why))
+    return false;
+  if (target == cloth_backend::gpu_compute)
+    return compute_offered(why);
+  return gpu_cloth::check_grid_size(cloth_stage.grid_size(), why);
+}
+
+// Uploads cloth_stage's current state to a GPU path.
+bool scene::load_gpu_path(cloth_backend target, std::string& why) {
+  if (!gpu_can_run(target, why))
+    return false;
+  gpu_speed_bound_ = divergence_speed_bound(cloth_stage);
+  return target == cloth_backend::gpu ? gpu_.load(cloth_stage, why)
+                                      : gpu_compute_.load(cloth_stage, why);
+}
+
+void scene::read_gpu_state() {
+  if (backend_ == cloth_backend::gpu && gpu_.is_loaded())
+    gpu_.read_state(cloth_stage);
+  else if (backend_ == cloth_backend::gpu_compute && gpu_compute_.is_loaded())
+    gpu_compute_.read_state(cloth_stage);
+  else
+    return;
+  ++readbacks_;
+  last_readback_ = clock::now();
+  state_fresh_ = true;
 }
 
 void scene::switch_cloth_backend(cloth_backend target) {
   if (target == backend_)
     return;
   const long step = status_[static_cast<int>(stage_kind::cloth)].step;
-  if (target == cloth_backend::gpu) {
-    // The GPU takes the CPU cloth's current state: positions, velocities, pins, rest lengths.
+  if (target != cloth_backend::cpu) {
+    // The GPU path takes the cloth's current state: positions, velocities, pins, rest lengths.
     std::string why;
-    if (!gpu_can_run(why) || !gpu_.load(cloth_stage, why)) {
-      backend_message_ = "The cloth stays on the CPU: " + why;
+    if (!gpu_can_run(target, why)) {
+      backend_message_ =
+          std::string("The cloth stays on the ") + backend_name(backend_) + ": " + why;
+      std::printf("clothlab-window: %s\n", backend_message_.c_str());
+      std::fflush(stdout);
+      return;
+    }
+    read_gpu_state();  // from the GPU path it is on, if any
+    if (!load_gpu_path(target, why)) {
+      backend_ = cloth_backend::cpu;
+      backend_message_ = "The cloth went to the CPU: " + why;
       std::printf("clothlab-window: %s\n", backend_message_.c_str());
       std::fflush(stdout);
       return;
     }
   } else {
-    gpu_.read_state(cloth_stage);  // the CPU goes on from the GPU's state
+    read_gpu_state();  // the CPU goes on from the GPU's state
   }
   const cloth_backend from = backend_;
   backend_ = target;
@@ -169,14 +227,27 @@ void scene::switch_cloth_backend(cloth_backend target) {
 }
 
 void scene::toggle_cloth_backend() {
-  switch_cloth_backend(backend_ == cloth_backend::gpu ? cloth_backend::cpu : cloth_backend::gpu);
+  switch (backend_) {
+    case cloth_backend::cpu:
+      switch_cloth_backend(cloth_backend::gpu);
+      return;
+    case cloth_backend::gpu:
+      if (std::string why; compute_offered(why))
+        switch_cloth_backend(cloth_backend::gpu_compute);
+      else
+        switch_cloth_backend(cloth_backend::cpu);
+      return;
+    case cloth_backend::gpu_compute:
+      switch_cloth_backend(cloth_backend::cpu);
+      return;
+  }
 }
 
 void scene::fall_back_to_cpu(const std::string& reason) {
-  if (gpu_.is_loaded() && gpu_.grid_size() == cloth_stage.grid_size())
-    gpu_.read_state(cloth_stage);
+  const cloth_backend from = backend_;
+  read_gpu_state();
   backend_ = cloth_backend::cpu;
-  backend_message_ = "cloth: GPU -> CPU at step " +
+  backend_message_ = std::string("cloth: ") + backend_name(from) + " -> CPU at step " +
                      std::to_string(status_[static_cast<int>(stage_kind::cloth)].step) + ": " +
                      reason;
   std::printf("clothlab-window: %s\n", backend_message_.c_str());
@@ -185,10 +256,10 @@ void scene::fall_back_to_cpu(const std::string& reason) {
 
 // After load_model of the cloth: the GPU path takes the new initial state (a new N, S or pins).
 void scene::reload_gpu_cloth() {
-  if (backend_ != cloth_backend::gpu)
+  if (backend_ == cloth_backend::cpu)
     return;
   std::string why;
-  if (!gpu_can_run(why) || !gpu_.load(cloth_stage, why)) {
+  if (!load_gpu_path(backend_, why)) {
     backend_ = cloth_backend::cpu;
     backend_message_ = "The cloth went back to the CPU: " + why;
     std::printf("clothlab-window: %s\n", backend_message_.c_str());
@@ -196,11 +267,11 @@ void scene::reload_gpu_cloth() {
   }
 }
 
-// Question 12: the same number of steps of each path, from the current state, on copies: a
-// spring_mesh copy for the CPU, a second gpu_cloth for the GPU (timed between two glFinish).
-void scene::measure_both_backends(int steps) {
-  if (backend_ == cloth_backend::gpu)
-    gpu_.read_state(cloth_stage);  // the current state, whichever path holds it
+// Question 12: the same number of steps of every path, from the current state, on copies: a
+// spring_mesh copy for the CPU, a second gpu_cloth and gpu_cloth_compute for the GPU paths
+// (timed between two glFinish).
+void scene::measure_backends(int steps) {
+  read_gpu_state();  // the current state, whichever path holds it
   comparison_ = {};
   comparison_.measured = true;
   comparison_.grid_size = cloth_stage.grid_size();
@@ -214,14 +285,145 @@ void scene::measure_both_backends(int steps) {
 
   std::string why;
   gpu_cloth gpu_copy;
-  if (gpu_can_run(why) && gpu_copy.load(cloth_stage, why))
+  if (gpu_can_run(cloth_backend::gpu, why) && gpu_copy.load(cloth_stage, why))
     comparison_.gpu_steps_per_second = 1.0 / gpu_copy.time_steps(cloth_stage.parameters, steps);
   else
     comparison_.gpu_error = why;
-  std::printf("clothlab-window: N = %d, %d steps: CPU %.0f steps/s, GPU %.0f steps/s%s%s\n",
-              comparison_.grid_size, steps, comparison_.cpu_steps_per_second,
-              comparison_.gpu_steps_per_second, why.empty() ? "" : ": ", why.c_str());
+
+  std::string compute_why;
+  gpu_cloth_compute compute_copy;
+  if (gpu_can_run(cloth_backend::gpu_compute, compute_why) &&
+      compute_copy.load(cloth_stage, compute_why)) {
+    glFinish();
+    const clock::time_point compute_start = clock::now();
+    compute_copy.run(cloth_stage.parameters, steps);
+    glFinish();
+    comparison_.compute_steps_per_second = steps / seconds_since(compute_start);
+  } else {
+    comparison_.compute_error = compute_why;
+  }
+  std::printf(
+      "clothlab-window: N = %d, %d steps: CPU %.0f steps/s, GPU %.0f steps/s%s%s, GPU compute "
+      "%.0f steps/s%s%s\n",
+      comparison_.grid_size, steps, comparison_.cpu_steps_per_second,
+      comparison_.gpu_steps_per_second, why.empty() ? "" : ": ", why.c_str(),
+      comparison_.compute_steps_per_second, compute_why.empty() ? "" : ": ", compute_why.c_str());
   std::fflush(stdout);
+}
+
+// ---- The mouse on the cloth (issue 10) -----------------------------------------------------
+
+pick_ray scene::ray_at(double x, double y) const {
+  const double ndc_x = 2.0 * (x - viewport_left_) / viewport_width_ - 1.0;
+  const double ndc_y = 1.0 - 2.0 * y / viewport_height_;
+  const float aspect = static_cast<float>(viewport_width_) / static_cast<float>(viewport_height_);
+  return ray_through(view, aspect, ndc_x, ndc_y);
+}
+
+double scene::radians_per_pixel() const {
+  return static_cast<double>(view.field_of_view) / viewport_height_;
+}
+
+std::optional<glm::dvec2> scene::framebuffer_point(const glm::dvec3& point) const {
+  const float aspect = static_cast<float>(viewport_width_) / static_cast<float>(viewport_height_);
+  const glm::dvec4 clip =
+      glm::dmat4(view.projection(aspect)) * glm::dmat4(view.view()) * glm::dvec4(point, 1.0);
+  if (clip.w <= 0.0)
+    return std::nullopt;
+  return glm::dvec2(viewport_left_ + (clip.x / clip.w + 1.0) / 2.0 * viewport_width_,
+                    (1.0 - clip.y / clip.w) / 2.0 * viewport_height_);
+}
+
+bool scene::grab_particle(const pick_ray& ray, double max_angle) {
+  if (stage_ != stage_kind::cloth || status().diverged)
+    return false;
+  if (cloth_on_gpu())
+    read_gpu_state();  // the positions the user sees, once, at the press
+  const std::optional<std::size_t> picked = pick_particle(cloth_stage, ray, max_angle);
+  if (!picked)
+    return false;
+  const int n = cloth_stage.grid_size();
+  const int ku = static_cast<int>(*picked % static_cast<std::size_t>(n));
+  const int kv = static_cast<int>(*picked / static_cast<std::size_t>(n));
+  const glm::dvec3 position = cloth_stage.particles().get_position(*picked);
+  if (cloth_stage.particles().is_fixed[*picked]) {
+    std::printf("clothlab-window: particle (%d, %d) is pinned: it cannot be dragged\n", ku, kv);
+    std::fflush(stdout);
+    return false;
+  }
+  drag_parameters& drag = cloth_stage.parameters.drag;
+  drag.enabled = true;
+  drag.ku = ku;
+  drag.kv = kv;
+  drag.target = position;
+  grab_plane_point_ = position;
+  std::printf("clothlab-window: grabbed particle (%d, %d) at (%.3f, %.3f, %.3f)\n", ku, kv,
+              position.x, position.y, position.z);
+  std::fflush(stdout);
+  return true;
+}
+
+void scene::drag_grabbed(const pick_ray& ray) {
+  if (grabbing())
+    cloth_stage.parameters.drag.target =
+        point_on_plane(ray, grab_plane_point_, viewing_direction(view));
+}
+
+void scene::release_grab() {
+  drag_parameters& drag = cloth_stage.parameters.drag;
+  if (!drag.enabled)
+    return;
+  const glm::dvec3 position = grabbed_position();
+  drag.enabled = false;
+  std::size_t springs = 0;  // fewer than at the start when the cloth tore
+  for (const spring_family family : all_spring_families)
+    springs += cloth_stage.springs(family).size();
+  std::printf(
+      "clothlab-window: released particle (%d, %d) at (%.3f, %.3f, %.3f), target (%.3f, %.3f, "
+      "%.3f), %zu springs\n",
+      drag.ku, drag.kv, position.x, position.y, position.z, drag.target.x, drag.target.y,
+      drag.target.z, springs);
+  std::fflush(stdout);
+}
+
+glm::dvec3 scene::grabbed_position() {
+  const drag_parameters& drag = cloth_stage.parameters.drag;
+  const int n = cloth_stage.grid_size();
+  const std::size_t k =
+      spring_mesh::index(std::clamp(drag.ku, 0, n - 1), std::clamp(drag.kv, 0, n - 1), n);
+  if (!cloth_on_gpu())
+    return cloth_stage.particles().get_position(k);
+  float texel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  if (backend_ == cloth_backend::gpu_compute) {  // one vec4 of the position buffer
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, gpu_compute_.position_buffer());
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, static_cast<GLintptr>(k * sizeof texel),
+                       sizeof texel, texel);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    return {texel[0], texel[1], texel[2]};
+  }
+  // One texel of the position texture, through a framebuffer of our own.
+  if (probe_framebuffer_ == 0)
+    glGenFramebuffers(1, &probe_framebuffer_);
+  GLint previous = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, probe_framebuffer_);
+  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                         gpu_.position_texture(), 0);
+  glReadPixels(drag.ku, drag.kv, 1, 1, GL_RGBA, GL_FLOAT, texel);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous));
+  return {texel[0], texel[1], texel[2]};
+}
+
+void scene::start_sphere_move(const pick_ray& ray) {
+  const sphere_parameters& sphere = cloth_stage.parameters.sphere;
+  sphere_plane_point_ = sphere.centre;
+  sphere_grab_offset_ = point_on_plane(ray, sphere.centre, viewing_direction(view)) - sphere.centre;
+}
+
+void scene::move_sphere(const pick_ray& ray) {
+  cloth_stage.parameters.sphere.centre =
+      point_on_plane(ray, sphere_plane_point_, viewing_direction(view)) - sphere_grab_offset_;
 }
 
 double scene::current_time_step() const {
@@ -244,11 +446,11 @@ void scene::single_step() {
 // ---- Every frame: simulation, then display ----------------------------------------------
 
 void scene::draw_scene(double frame_seconds, int left, int width, int height) {
-  if (backend_ == cloth_backend::gpu) {
-    // The integrator can change while the cloth is on the GPU (the command line, or a choice
-    // the panel offers): one the GPU does not run sends the cloth back to the CPU.
-    if (std::string why;
-        !gpu_cloth::supports_integrator(cloth_stage.parameters.dynamics.integrator, why))
+  state_fresh_ = false;
+  if (backend_ != cloth_backend::cpu) {
+    // The integrator, tearing or self-collision can change while the cloth is on the GPU (the
+    // panel): what the GPU does not run (gpu_cloth::supports) sends the cloth back to the CPU.
+    if (std::string why; !gpu_cloth::supports(cloth_stage.parameters, why))
       fall_back_to_cpu(why);
   }
   const int steps = steps_for_this_frame(frame_seconds);
@@ -256,7 +458,7 @@ void scene::draw_scene(double frame_seconds, int left, int width, int height) {
                             ? control.max_simulation_seconds_per_frame
                             : std::numeric_limits<double>::infinity();
   simulate(steps, budget);
-  if (steps > 0)
+  if (steps > 0 && (!cloth_on_gpu() || state_fresh_))  // on the GPU: when it was read back
     record_energy();
   draw(left, width, height);
 }
@@ -312,28 +514,43 @@ int scene::steps_for_this_frame(double frame_seconds) {
 }
 
 // Runs the steps, unless the stage diverges or the wall-clock budget is spent first.
-// On the GPU path the steps are timed between two glFinish, so that the GPU's work is counted,
-// not only its submission.
+// On the GPU paths the steps go in batches, each checked for divergence on the GPU itself, and
+// are timed between two glFinish, so that the GPU's work is counted, not only its submission.
 void scene::simulate(int steps, double wall_clock_budget) {
   const bool on_gpu = cloth_on_gpu();
   if (on_gpu)
     glFinish();  // the previous frame's drawing is not counted as stepping
   const clock::time_point start = clock::now();
-  const auto over_budget = [&](int done) {
+  const auto over_budget = [&] {
     if (!std::isfinite(wall_clock_budget))
       return false;
-    if (on_gpu) {
-      if (done % gpu_steps_between_budget_checks != 0)
-        return false;
+    if (on_gpu)
       glFinish();
-    }
     return seconds_since(start) > wall_clock_budget;
   };
   int done = 0;
   while (done < steps && !current_status().diverged) {
-    step_current_stage();
-    ++done;
-    if (done < steps && over_budget(done)) {
+    if (on_gpu) {
+      const int batch = std::min(gpu_steps_between_budget_checks, steps - done);
+      const int diverged_after = run_gpu_steps(batch);
+      const int taken = diverged_after != 0 ? diverged_after : batch;
+      for (int i = 0; i < taken; ++i)
+        count_step(cloth_stage.parameters.dynamics.time_step);
+      done += taken;
+      if (diverged_after != 0) {
+        read_gpu_state();  // the state at the end of the batch, to say what went wrong
+        divergence_status check = divergence_check(cloth_stage);
+        if (!check.diverged)
+          check = {true, "a particle not finite or faster than " +
+                             std::to_string(gpu_speed_bound_) + " m/s (checked on the GPU)"};
+        report_divergence(std::move(check));
+        break;
+      }
+    } else {
+      step_current_stage();
+      ++done;
+    }
+    if (done < steps && over_budget()) {
       current_status().behind_real_time = true;
       unsimulated_seconds_ = 0.0;  // the backlog is dropped, as when the step cap is hit
       break;
@@ -342,30 +559,25 @@ void scene::simulate(int steps, double wall_clock_budget) {
   if (on_gpu)
     glFinish();
   const double stepping_seconds = seconds_since(start);
-  if (on_gpu && done > 0)
-    check_gpu_cloth();
+  // The state comes back only for what the panel shows, at a bounded rate.
+  if (on_gpu && done > 0 && panel_needs_state && !state_fresh_ &&
+      seconds_since(last_readback_) >= 1.0 / max_readbacks_per_second)
+    read_gpu_state();
   measure_rates(done, stepping_seconds);
 }
 
-// The GPU cloth's state comes back once per frame (not per step), for the divergence check, the
-// energy plot and the springs overlay: 2 N^2 RGBA floats, 320 kB at N = 100.
-void scene::check_gpu_cloth() {
-  gpu_.read_state(cloth_stage);
-  report_divergence(divergence_check(cloth_stage));
+// `count` steps of the cloth on its GPU path, each checked there for divergence.
+int scene::run_gpu_steps(int count) {
+  if (backend_ == cloth_backend::gpu_compute)
+    return gpu_compute_.run(cloth_stage.parameters, count, gpu_speed_bound_);
+  return gpu_.run(cloth_stage.parameters, count, gpu_speed_bound_);
 }
 
 // One step: force computation, then numerical integration (question 3), then the divergence
 // check (question 4): an explosion stops the run instead of drawing NaNs. The check also stops
 // a run whose speeds pass far beyond anything a stable run reaches (stability.hpp), so that
-// the explosion is caught before the numbers overflow.
+// the explosion is caught before the numbers overflow. (The GPU paths: simulate.)
 void scene::step_current_stage() {
-  if (cloth_on_gpu()) {
-    // Questions 12 and 13 on the GPU: forces, integrator and ground contact in gpu_step.frag,
-    // then the normals. The check comes after the frame's steps (check_gpu_cloth).
-    gpu_.step(cloth_stage.parameters);
-    count_step(cloth_stage.parameters.dynamics.time_step);
-    return;
-  }
   auto [time_step, check] = with_current_stage([](auto& stage) {
     stage.compute_force();  // forces from the positions at the start of the step
     stage.apply_force();    // integrator (and, for the cloth, the ground contact)
@@ -404,6 +616,9 @@ void scene::report_divergence(divergence_status check) {
 // Display: the renderer reads the state and never changes it. It draws straight into the
 // window's framebuffer, in the part right of the panel (viewport and scissor at x = left).
 void scene::draw(int left, int width, int height) {
+  viewport_left_ = left;
+  viewport_width_ = std::max(width, 1);
+  viewport_height_ = std::max(height, 1);
   // Under the panel (drawn over it, nearly opaque): the scene's background colour.
   glViewport(0, 0, left + width, height);
   if (left > 0) {
@@ -432,9 +647,48 @@ void scene::draw(int left, int width, int height) {
                                      view, display, width, height, left);
         break;
       }
+      if (backend_ == cloth_backend::gpu_compute) {
+        // The compute path's buffers, copied on the GPU into textures laid out the same way.
+        copy_compute_state_to_textures();
+        renderer_.draw_from_textures(compute_position_texture_, compute_normal_texture_,
+                                     cloth_stage, view, display, width, height, left);
+        break;
+      }
       renderer_.draw(cloth_stage, view, display, width, height, left);
       break;
   }
+}
+
+// The compute path keeps particle k = ku + N kv at element k of its buffers, one vec4 each: the
+// row-major layout of an N x N RGBA32F texture. A pixel-unpack copy fills the textures from the
+// buffers without the data leaving the GPU.
+void scene::copy_compute_state_to_textures() {
+  const int n = gpu_compute_.grid_size();
+  if (n == 0)
+    return;
+  if (compute_texture_size_ != n) {
+    for (GLuint* texture : {&compute_position_texture_, &compute_normal_texture_}) {
+      if (*texture == 0)
+        glGenTextures(1, texture);
+      glBindTexture(GL_TEXTURE_2D, *texture);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, n, 0, GL_RGBA, GL_FLOAT, nullptr);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    compute_texture_size_ = n;
+  }
+  glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);  // after the compute shaders' writes
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  const std::pair<GLuint, GLuint> copies[] = {
+      {gpu_compute_.position_buffer(), compute_position_texture_},
+      {gpu_compute_.normal_buffer(), compute_normal_texture_}};
+  for (const auto& [buffer, texture] : copies) {
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, n, n, GL_RGBA, GL_FLOAT, nullptr);
+  }
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 // Question 4: kinetic + gravitational + spring energy. Without damping the exact motion keeps it

@@ -7,6 +7,9 @@
 
 #include <array>
 #include <chrono>
+#include <optional>
+
+#include <glm/vec2.hpp>
 #include <string>
 #include <vector>
 
@@ -14,7 +17,9 @@
 #include "coupled_springs.hpp"
 #include "energy.hpp"
 #include "gpu_cloth.hpp"
+#include "gpu_cloth_compute.hpp"
 #include "options.hpp"
+#include "picking.hpp"
 #include "renderer.hpp"
 #include "single_spring.hpp"
 #include "spring_mesh.hpp"
@@ -47,19 +52,22 @@ struct simulation_control {
 };
 
 // Where the cloth is simulated (questions 11 and 12): on the CPU in double precision
-// (spring_mesh), or on the GPU in single precision, in fragment shaders (gpu_cloth).
-enum class cloth_backend { cpu, gpu };
-const char* backend_name(cloth_backend backend);  // "CPU", "GPU"
+// (spring_mesh), or on the GPU in single precision, in fragment shaders (gpu_cloth, the
+// handout's) or in OpenGL 4.3 compute shaders (gpu_cloth_compute, issue 9).
+enum class cloth_backend { cpu, gpu, gpu_compute };
+const char* backend_name(cloth_backend backend);  // "CPU", "GPU", "GPU compute"
 
-// Question 12: steps per second of both paths for the same cloth, measured on copies of the
-// current state (scene::measure_both_backends), so that the live run is not disturbed.
+// Question 12: steps per second of every path for the same cloth, measured on copies of the
+// current state (scene::measure_backends), so that the live run is not disturbed.
 struct backend_comparison {
   bool measured = false;
   int grid_size = 0;  // N of the measured cloth
   int steps = 0;      // steps timed on each path
   double cpu_steps_per_second = 0.0;
-  double gpu_steps_per_second = 0.0;  // 0 when the GPU could not run it (gpu_error says why)
+  double gpu_steps_per_second = 0.0;      // 0 when the GPU could not run it (gpu_error says why)
+  double compute_steps_per_second = 0.0;  // the compute path; 0 with compute_error
   std::string gpu_error;
+  std::string compute_error;
 };
 
 // Where one stage's run stands.
@@ -77,6 +85,9 @@ class scene {
  public:
   // The three stages with the parameters of the command line; nothing is loaded yet.
   explicit scene(const options& start);
+  ~scene();  // needs the GL context still current
+  scene(const scene&) = delete;
+  scene& operator=(const scene&) = delete;
 
   // Loads the renderer's shaders and texture (needs the GL context). False with error on failure.
   bool init_renderer(std::string& error);
@@ -121,26 +132,63 @@ class scene {
   long steps_taken() const { return steps_taken_; }
 
   // Questions 11 and 12: the cloth's path. switch_cloth_backend carries the current state across
-  // (CPU -> GPU: gpu_cloth::load; GPU -> CPU: gpu_cloth::read_state), so the cloth goes on from
-  // where it is. It refuses the GPU when the integrator or the grid size cannot run there, and
-  // then says why in backend_message(). Works whatever stage is shown; reset() keeps the path.
+  // (to a GPU path: its load; back: its read_state), so the cloth goes on from where it is. It
+  // refuses a GPU path when the cloth as set up cannot run there (gpu_can_run), and then says
+  // why in backend_message(). Works whatever stage is shown; reset() keeps the path.
   void switch_cloth_backend(cloth_backend target);
-  void toggle_cloth_backend();
+  void toggle_cloth_backend();  // key G: CPU -> GPU -> GPU compute (where offered) -> CPU
   cloth_backend backend() const { return backend_; }
-  // True when the cloth as now set up can run on the GPU; otherwise false with the reason.
-  bool gpu_can_run(std::string& why) const;
+  // True when the cloth as now set up can run on that GPU path; otherwise false with the reason
+  // (the integrator, tearing or self-collision, the grid size, or a context older than 4.3).
+  bool gpu_can_run(cloth_backend target, std::string& why) const;
+  // Whether the window's context has compute shaders (OpenGL 4.3); otherwise false with why.
+  bool compute_offered(std::string& why) const {
+    why = compute_unavailable_;
+    return compute_unavailable_.empty();
+  }
+  // Set by the panel every frame: whether what it shows needs the cloth's state on the CPU (the
+  // energy plot, the state images). On the GPU paths the state is read back only then, at most
+  // max_readbacks_per_second times a second; otherwise never (the divergence check runs on the
+  // GPU and the drawing reads the GPU's own buffers).
+  bool panel_needs_state = true;
+  static constexpr double max_readbacks_per_second = 10.0;
+  long readbacks() const { return readbacks_; }  // GPU -> CPU read-backs of the whole state
   // The last switch, refusal or fallback to the CPU, as a sentence ("" before any).
   const std::string& backend_message() const { return backend_message_; }
   // Steps per second of the live path's stepping alone (not drawing nor the panel), measured
   // continuously over about half a second; for the GPU, between two glFinish.
   double stepping_rate() const { return measured_stepping_rate_; }
-  // Question 12: times `steps` steps of each path on copies of the current cloth.
-  void measure_both_backends(int steps);
+  // Question 12: times `steps` steps of every path on copies of the current cloth.
+  void measure_backends(int steps);
   const backend_comparison& comparison() const { return comparison_; }
   // Question 11: the cloth's state as the GPU's N x N textures hold it, as small images; made
   // again when the cloth stepped since the last call (needs the GL context).
   const state_images& state_textures();
   bool state_textures_from_gpu() const { return state_images_from_gpu_; }
+  // The mouse on the cloth (issue 10; model.md, "drag"). At a left press, grab_particle picks
+  // the particle under the ray (picking.hpp) from the cloth's current positions (on the GPU path
+  // read back once, at the press). A pinned particle cannot be dragged: nothing is grabbed and
+  // it returns false (the press then orbits). While the button is held, drag_grabbed sets the
+  // drag target every frame: the point of the ray in the plane that faces the camera through the
+  // grabbed point (as it was at the press). release_grab ends the drag. Each prints a line.
+  bool grab_particle(const pick_ray& ray, double max_angle);
+  void drag_grabbed(const pick_ray& ray);
+  void release_grab();
+  bool grabbing() const { return cloth_stage.parameters.drag.enabled; }
+  // The dragged particle's position now (on the GPU path one texel read back), m.
+  glm::dvec3 grabbed_position();
+  // Shift + left drag: the sphere follows the cursor in the plane facing the camera through its
+  // centre (as it was at the press).
+  void start_sphere_move(const pick_ray& ray);
+  void move_sphere(const pick_ray& ray);
+  // The ray through a point of the window's framebuffer (pixels, from its top-left corner), in
+  // the scene's viewport as last drawn; and how many radians of the view one pixel spans.
+  pick_ray ray_at(double x, double y) const;
+  double radians_per_pixel() const;
+  // Where a point of the scene is drawn in the framebuffer (pixels from its top-left corner);
+  // nullopt behind the eye.
+  std::optional<glm::dvec2> framebuffer_point(const glm::dvec3& point) const;
+
   // Question 12: the OpenGL renderer (GL_RENDERER), e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
   const std::string& renderer_name() const { return renderer_name_; }
 
@@ -180,13 +228,16 @@ class scene {
   void measure_rates(int steps, double stepping_seconds);
   void restart_rate_window();
   bool cloth_on_gpu() const {
-    return stage_ == stage_kind::cloth && backend_ == cloth_backend::gpu;
+    return stage_ == stage_kind::cloth && backend_ != cloth_backend::cpu;
   }
+  bool load_gpu_path(cloth_backend target, std::string& why);
+  void read_gpu_state();         // the current GPU path's state into cloth_stage
+  int run_gpu_steps(int count);  // returns the first diverged step of the batch, 0 if none
+  void copy_compute_state_to_textures();
   void count_step(double time_step);
   void report_divergence(divergence_status check);
   void fall_back_to_cpu(const std::string& reason);
   void reload_gpu_cloth();
-  void check_gpu_cloth();
   void record_energy();
   void restart_energy_history();
   void load_spring_stage();
@@ -218,14 +269,34 @@ class scene {
   double measured_stepping_rate_ = 0.0;
   long steps_taken_ = 0;
 
-  // The GPU path (questions 11 and 12). While backend_ is gpu, gpu_ holds the cloth's state and
-  // cloth_stage holds a copy read back once per frame, for the divergence check and the energy
-  // (the springs overlay is drawn from the position texture).
+  // The GPU paths (questions 11 and 12, issue 9). While backend_ is gpu (gpu_compute), gpu_
+  // (gpu_compute_) holds the cloth's state; cloth_stage holds a copy read back only when the
+  // panel needs it (panel_needs_state), at a switch, a measurement, a press of the mouse or a
+  // divergence. The divergence check runs on the GPU (gpu_cloth::run's speed bound).
   cloth_backend backend_ = cloth_backend::cpu;
   gpu_cloth gpu_;
+  gpu_cloth_compute gpu_compute_;
+  std::string compute_unavailable_ = "not checked yet";  // "" when the context has 4.3
+  // The compute path's buffers copied (on the GPU) into N x N textures for the renderer.
+  GLuint compute_position_texture_ = 0;
+  GLuint compute_normal_texture_ = 0;
+  int compute_texture_size_ = 0;
+  double gpu_speed_bound_ = 0.0;  // m/s, the divergence check's bound on the GPU paths
+  clock::time_point last_readback_ = clock::now();
+  bool state_fresh_ = false;  // the GPU state was read back this frame
+  long readbacks_ = 0;
   std::string backend_message_;
   backend_comparison comparison_;
   std::string renderer_name_;
+
+  // The scene's part of the framebuffer at the last draw (pixels): left edge, width, height.
+  int viewport_left_ = 0;
+  int viewport_width_ = 1;
+  int viewport_height_ = 1;
+  glm::dvec3 grab_plane_point_{0.0};    // the grabbed particle at the press, m
+  glm::dvec3 sphere_grab_offset_{0.0};  // Shift + drag: cursor point - sphere centre at the press
+  glm::dvec3 sphere_plane_point_{0.0};  // the sphere's centre at the press, m
+  GLuint probe_framebuffer_ = 0;        // reads one texel of the GPU path's position texture
 
   state_images state_images_;
   long state_images_step_ = -1;  // the cloth's step they show (-1: none yet)

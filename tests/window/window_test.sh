@@ -2,6 +2,7 @@
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
 #   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel|paused_idle
+#                  |grab|grab_gpu|grab_compute|rip|orbit|sphere
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -58,6 +59,17 @@ if [ "$scenario" = divergence ]; then
   arguments=(--stage spring --integrator explicit --K 5000 --dt 0.05 --mu 0)
 elif [ "$scenario" = gpu_switch ]; then
   arguments=(--stage cloth --wind-strength 10)  # the cloth flaps in the wind onto the ground
+elif [ "$scenario" = grab ] || [ "$scenario" = orbit ]; then
+  arguments=(--stage cloth)
+elif [ "$scenario" = grab_gpu ]; then
+  arguments=(--stage cloth --backend gpu)
+elif [ "$scenario" = grab_compute ]; then
+  arguments=(--stage cloth --backend gpu-compute)
+elif [ "$scenario" = rip ]; then
+  # The panel's Rip preset: a light cloth that tears at 100 % strain under a stiff drag.
+  arguments=(--stage cloth --mass 0.1 --tear-strain 1 --drag-stiffness 2000)
+elif [ "$scenario" = sphere ]; then
+  arguments=(--stage cloth --pins none --sphere 0,0,-0.6,0.3)
 fi
 # Every run prints where the dt slider is whenever it or the run's state changes.
 CLOTHLAB_PRINT_LAYOUT=1 "$program" "${arguments[@]}" >window.log 2>&1 &
@@ -154,7 +166,130 @@ check_same_panel() {
   echo "window test: the panel's sliders are the same pixels in $first and $second"
 }
 
+# A point on the cloth, "X Y" in window pixels, from a screenshot: the pixel of the cloth's red
+# squares (the texture's; the ground and the sky have no saturated red) nearest to their centre,
+# in the scene right of the panel (x >= 410), looked at on a 4 x smaller copy.
+cloth_point() {
+  convert "$1" -crop 870x800+410+0 +repage -sample 25% txt:- |
+    awk -F'[(),: ]+' 'NR > 1 && $3 > 150 && $4 < 100 && $5 < 100 {
+        x[n] = $1; y[n] = $2; sx += $1; sy += $2; n++ }
+      END {
+        if (n == 0) exit 1
+        cx = sx / n; cy = sy / n; best = 0
+        for (i = 0; i < n; i++) {
+          d = (x[i] - cx) ^ 2 + (y[i] - cy) ^ 2
+          if (i == 0 || d < bd) { best = i; bd = d }
+        }
+        printf "%d %d\n", 410 + 4 * x[best] + 2, 4 * y[best] + 2 }'
+}
+
+# The three numbers of the first "(x, y, z)" after `label` in a line of the log.
+vector_after() {
+  echo "$2" | sed -E "s/.*$1 \(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\).*/\1 \2 \3/"
+}
+
+# The camera (yaw and pitch) printed when the left drag started and when it ended.
+camera_at() {
+  grep "left drag $1 (" window.log | tail -n 1 | sed -E 's/.*camera yaw ([-0-9.]+), pitch ([-0-9.]+)/\1 \2/'
+}
+
+# A left drag that starts on the cloth grabs a particle and pulls it; the camera does not move.
+# The press is made paused (the cloth stays where the screenshot saw it), then the cloth runs
+# while the mouse moves up and right, and the button is released. Echoes the release line.
+grab_and_pull() {
+  local shot point x y grabbed released from to moved
+  sleep 2
+  press space
+  shot=$(screenshot_of cloth)
+  point=$(cloth_point "$shot") || fail "no cloth (red squares) in $shot"
+  read -r x y <<<"$point"
+  timeout 10 xdotool mousemove "$x" "$y" || fail "xdotool mousemove failed"
+  sleep 0.5
+  timeout 10 xdotool mousedown 1 || fail "xdotool mousedown failed"
+  wait_for_log "grabbed particle" || fail "a press on the cloth at ($x, $y) grabbed no particle"
+  timeout 10 xdotool key space || fail "xdotool key space failed"  # runs, the button held
+  for _ in $(seq 12); do
+    timeout 10 xdotool mousemove_relative -- 25 -12 || fail "xdotool mousemove_relative failed"
+    sleep 0.25
+  done
+  sleep 2
+  timeout 10 xdotool mouseup 1 || fail "xdotool mouseup failed"
+  wait_for_log "left drag ended (grab)" || fail "the drag that started on the cloth did not end as a grab"
+  still_running "the grab"
+  grabbed=$(grep "grabbed particle" window.log | tail -n 1)
+  released=$(grep "released particle" window.log | tail -n 1)
+  from=$(vector_after "at" "$grabbed")
+  to=$(vector_after "at" "$released")
+  moved=$(awk -v a="$from" -v b="$to" 'BEGIN { split(a, p); split(b, q)
+    print sqrt((p[1] - q[1]) ^ 2 + (p[2] - q[2]) ^ 2 + (p[3] - q[3]) ^ 2) }')
+  awk -v m="$moved" 'BEGIN { exit !(m > 0.1) }' ||
+    fail "the grabbed particle moved only $moved m (from $from to $to)"
+  [ "$(camera_at started)" = "$(camera_at ended)" ] ||
+    fail "the camera moved during the grab: $(camera_at started) -> $(camera_at ended)"
+  echo "window test: $grabbed" >&2
+  echo "window test: $released; moved $moved m, camera still at $(camera_at ended)" >&2
+  echo "$released"
+}
+
+# Springs of the 20 x 20 cloth, counted by hand: structural 2 x 19 x 20, shear 2 x 19 x 19,
+# bending 2 x 18 x 20.
+whole_cloth_springs=$((2 * 19 * 20 + 2 * 19 * 19 + 2 * 18 * 20))
+springs_in() {
+  echo "$1" | sed -E 's/.*, ([0-9]+) springs$/\1/'
+}
+
 case "$scenario" in
+  grab | grab_gpu | grab_compute)
+    released=$(grab_and_pull)
+    [ "$(springs_in "$released")" -eq "$whole_cloth_springs" ] ||
+      fail "springs went missing without tearing: $released"
+    grep -q "cloth: .* -> CPU" window.log && fail "the cloth left its path: $(grep 'cloth:' window.log)"
+    ;;
+  rip)
+    released=$(grab_and_pull)
+    springs=$(springs_in "$released")
+    [ "$springs" -lt "$whole_cloth_springs" ] ||
+      fail "pulling the light cloth with tearing on tore no spring ($springs springs)"
+    echo "window test: the pull tore $((whole_cloth_springs - springs)) springs"
+    ;;
+  orbit)
+    # A left drag that starts off the cloth (the sky, top right) orbits and grabs nothing.
+    sleep 1
+    timeout 10 xdotool mousemove 1200 90 || fail "xdotool mousemove failed"
+    timeout 10 xdotool mousedown 1 || fail "xdotool mousedown failed"
+    for _ in $(seq 6); do
+      timeout 10 xdotool mousemove_relative -- -30 0 || fail "xdotool mousemove_relative failed"
+      sleep 0.25
+    done
+    timeout 10 xdotool mouseup 1 || fail "xdotool mouseup failed"
+    wait_for_log "left drag ended (orbit)" || fail "the drag that started off the cloth did not orbit"
+    grep -q "grabbed particle" window.log && fail "a press off the cloth grabbed a particle"
+    read -r yaw_before _ <<<"$(camera_at started)"
+    read -r yaw_after _ <<<"$(camera_at ended)"
+    awk -v a="$yaw_before" -v b="$yaw_after" 'BEGIN { d = a - b; exit !(d > 0.05 || d < -0.05) }' ||
+      fail "the orbit did not turn the camera (yaw $yaw_before -> $yaw_after)"
+    echo "window test: the drag off the cloth turned the camera's yaw from $yaw_before to $yaw_after"
+    ;;
+  sphere)
+    # Shift + left drag moves the sphere to the right in the camera-facing plane; the camera stays.
+    sleep 1
+    timeout 10 xdotool mousemove 1000 300 || fail "xdotool mousemove failed"
+    timeout 10 xdotool keydown shift || fail "xdotool keydown shift failed"
+    timeout 10 xdotool mousedown 1 || fail "xdotool mousedown failed"
+    for _ in $(seq 6); do
+      timeout 10 xdotool mousemove_relative -- 30 0 || fail "xdotool mousemove_relative failed"
+      sleep 0.25
+    done
+    timeout 10 xdotool mouseup 1 || fail "xdotool mouseup failed"
+    timeout 10 xdotool keyup shift || fail "xdotool keyup shift failed"
+    wait_for_log "left drag ended (sphere)" || fail "Shift + left drag did not move the sphere"
+    centre=$(vector_after "sphere moved to" "$(grep 'sphere moved to' window.log | tail -n 1)")
+    awk -v c="$centre" 'BEGIN { split(c, p); d = sqrt(p[1] ^ 2 + p[2] ^ 2 + (p[3] + 0.6) ^ 2)
+      exit !(d > 0.1 && (p[3] + 0.6) ^ 2 < 1e-6) }' ||
+      fail "the sphere did not move sideways from (0, 0, -0.6): now at ($centre)"
+    [ "$(camera_at started)" = "$(camera_at ended)" ] || fail "the camera moved with the sphere"
+    echo "window test: Shift + drag moved the sphere from (0, 0, -0.6) to ($centre)"
+    ;;
   paused_idle)
     # Paused, the window sleeps between events instead of drawing the same frame again: under a
     # quarter of a core over 3 s (running, it takes one or two cores on llvmpipe).
@@ -217,7 +352,8 @@ case "$scenario" in
     ;;
   gpu_switch)
     # The cloth runs a while on the CPU, goes to the GPU while running, is drawn from the GPU's
-    # textures, and comes back to the CPU, still running.
+    # textures, goes on to the compute path (drawn from its buffers), and comes back to the CPU,
+    # still running.
     sleep 1
     press g
     wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
@@ -225,8 +361,13 @@ case "$scenario" in
     on_gpu=$(screenshot_of cloth)
     check_image "$on_gpu" 1280 800 200
     check_cloth_drawn "$on_gpu"
+    press g  # the compute path, where the context has OpenGL 4.3 (Xvfb's llvmpipe has 4.5)
+    wait_for_log "cloth: GPU -> GPU compute at step" || fail "G did not take the cloth to the compute path"
+    sleep 1
+    on_compute=$(screenshot_of cloth)
+    check_cloth_drawn "$on_compute"
     press g
-    wait_for_log "cloth: GPU -> CPU at step" || fail "G did not bring the cloth back"
+    wait_for_log "cloth: GPU compute -> CPU at step" || fail "G did not bring the cloth back"
     sleep 1
     grep -q "diverged" window.log && fail "the cloth diverged across the switches"
     on_cpu=$(screenshot_of cloth)
@@ -234,7 +375,7 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel or paused_idle)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, orbit or sphere)"
     ;;
 esac
 
