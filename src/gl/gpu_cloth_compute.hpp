@@ -53,6 +53,7 @@ class gpu_cloth_compute {
   // pinned), e.g. for the window to copy into textures and draw without reading back.
   GLuint position_buffer() const { return position_[read_]; }
   GLuint normal_buffer() const { return normal_; }
+  GLuint spring_mask_buffer() const { return spring_mask_; }  // one uint per particle
 
  private:
   void release();

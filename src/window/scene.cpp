@@ -52,8 +52,9 @@ scene::scene(const options& start)
 scene::~scene() {
   if (probe_framebuffer_ != 0)
     glDeleteFramebuffers(1, &probe_framebuffer_);
-  const GLuint textures[] = {compute_position_texture_, compute_normal_texture_};
-  glDeleteTextures(2, textures);
+  const GLuint textures[] = {compute_position_texture_, compute_normal_texture_,
+                             compute_mask_texture_};
+  glDeleteTextures(3, textures);
 }
 
 bool scene::init_renderer(std::string& error) {
@@ -644,14 +645,16 @@ void scene::draw(int left, int width, int height) {
         // Question 11: the flat grid's vertex shader fetches positions and normals from the GPU
         // cloth's textures.
         renderer_.draw_from_textures(gpu_.position_texture(), gpu_.normal_texture(), cloth_stage,
-                                     view, display, width, height, left);
+                                     view, display, width, height, left,
+                                     gpu_.spring_mask_texture());
         break;
       }
       if (backend_ == cloth_backend::gpu_compute) {
         // The compute path's buffers, copied on the GPU into textures laid out the same way.
         copy_compute_state_to_textures();
         renderer_.draw_from_textures(compute_position_texture_, compute_normal_texture_,
-                                     cloth_stage, view, display, width, height, left);
+                                     cloth_stage, view, display, width, height, left,
+                                     compute_mask_texture_);
         break;
       }
       renderer_.draw(cloth_stage, view, display, width, height, left);
@@ -675,6 +678,12 @@ void scene::copy_compute_state_to_textures() {
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
+    if (compute_mask_texture_ == 0)
+      glGenTextures(1, &compute_mask_texture_);
+    glBindTexture(GL_TEXTURE_2D, compute_mask_texture_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, n, n, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     compute_texture_size_ = n;
   }
   glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);  // after the compute shaders' writes
@@ -686,6 +695,12 @@ void scene::copy_compute_state_to_textures() {
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
     glBindTexture(GL_TEXTURE_2D, texture);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, n, n, GL_RGBA, GL_FLOAT, nullptr);
+  }
+  // The spring masks (tearing), so that the drawing leaves out the torn triangles.
+  if (gpu_compute_.spring_mask_buffer() != 0) {
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, gpu_compute_.spring_mask_buffer());
+    glBindTexture(GL_TEXTURE_2D, compute_mask_texture_);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, n, n, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
   }
   glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
   glBindTexture(GL_TEXTURE_2D, 0);

@@ -280,6 +280,7 @@ class scene {
   // The compute path's buffers copied (on the GPU) into N x N textures for the renderer.
   GLuint compute_position_texture_ = 0;
   GLuint compute_normal_texture_ = 0;
+  GLuint compute_mask_texture_ = 0;  // GL_R32UI: the compute path's spring masks (tearing)
   int compute_texture_size_ = 0;
   double gpu_speed_bound_ = 0.0;  // m/s, the divergence check's bound on the GPU paths
   clock::time_point last_readback_ = clock::now();
