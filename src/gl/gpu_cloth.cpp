@@ -86,9 +86,9 @@ class saved_gl_state {
   std::array<GLboolean, capabilities.size()> enabled_{};
 };
 
-// An N x N GL_RGBA32F texture holding `texels` (4 floats per texel, texel (ku, kv) at
-// 4 (ku + N kv)), read with texelFetch: nearest filtering, no mipmaps.
-GLuint create_state_texture(int n, const std::vector<float>& texels) {
+// An N x N texture read with texelFetch (nearest filtering, no mipmaps), filled from `data`.
+GLuint create_grid_texture(int n, GLint internal_format, GLenum format, GLenum type,
+                           const void* data) {
   GLuint texture = 0;
   glGenTextures(1, &texture);
   glBindTexture(GL_TEXTURE_2D, texture);
@@ -96,21 +96,19 @@ GLuint create_state_texture(int n, const std::vector<float>& texels) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, n, 0, GL_RGBA, GL_FLOAT, texels.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, internal_format, n, n, 0, format, type, data);
   return texture;
+}
+
+// An N x N GL_RGBA32F texture holding `texels` (4 floats per texel, texel (ku, kv) at
+// 4 (ku + N kv)).
+GLuint create_state_texture(int n, const std::vector<float>& texels) {
+  return create_grid_texture(n, GL_RGBA32F, GL_RGBA, GL_FLOAT, texels.data());
 }
 
 // The N x N GL_R32UI spring mask (gpu_cloth.hpp), texel (ku, kv) = masks[ku + N kv].
 GLuint create_mask_texture(int n, const std::vector<std::uint32_t>& masks) {
-  GLuint texture = 0;
-  glGenTextures(1, &texture);
-  glBindTexture(GL_TEXTURE_2D, texture);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, n, n, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, masks.data());
-  return texture;
+  return create_grid_texture(n, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, masks.data());
 }
 
 // A framebuffer rendering into `targets` (attachment i = targets[i]); 0 and an error if the
