@@ -22,9 +22,7 @@
 #include <string>
 #include <vector>
 
-#ifndef CLOTHLAB_EXECUTABLE
-#error "CLOTHLAB_EXECUTABLE must be the path of the clothlab executable"
-#endif
+#include "build_paths.hpp"
 
 namespace {
 
@@ -83,7 +81,7 @@ class cli : public ::testing::Test {
     const fs::path out_path = root_ / ("stdout" + name + ".txt");
     const fs::path err_path = root_ / ("stderr" + name + ".txt");
     std::vector<char*> argv;
-    std::string program = CLOTHLAB_EXECUTABLE;
+    std::string program = clothlab_test::executable_path;
     argv.push_back(program.data());
     std::vector<std::string> copies = args;
     for (std::string& arg : copies) {
@@ -1020,7 +1018,7 @@ TEST_F(cli, ProgressIsShownOnATerminalOnly) {
   const pid_t child = forkpty(&terminal, nullptr, nullptr, nullptr);
   ASSERT_GE(child, 0);
   if (child == 0) {
-    std::string program = CLOTHLAB_EXECUTABLE;
+    std::string program = clothlab_test::executable_path;
     if (chdir(work().c_str()) != 0)
       _exit(126);
     // The single spring (the code of no lab question): damped, it never diverges.

@@ -28,9 +28,7 @@
 #include <thread>
 #include <vector>
 
-#ifndef CLOTHLAB_EXECUTABLE
-#error "CLOTHLAB_EXECUTABLE must be the path of the clothlab executable"
-#endif
+#include "build_paths.hpp"
 
 namespace {
 
@@ -243,7 +241,7 @@ std::string read_file(const fs::path& path) {
 outcome run(const arguments& args, const fs::path& work, const fs::path& logs,
             std::chrono::seconds limit) {
   std::vector<std::string> copies = args;
-  std::string program = CLOTHLAB_EXECUTABLE;
+  std::string program = clothlab_test::executable_path;
   std::vector<char*> argv = {program.data()};
   for (std::string& a : copies)
     argv.push_back(a.data());

@@ -24,6 +24,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "build_paths.hpp"
 #include "camera.hpp"
 #include "gl.hpp"
 #include "gl_context.hpp"
@@ -47,7 +48,7 @@ constexpr int height = 240;
 constexpr int pixel_tolerance = 24;
 constexpr double allowed_differing_fraction = 0.005;
 
-const std::filesystem::path reference_directory = CLOTHLAB_RENDER_REFERENCE_DIR;
+const std::filesystem::path reference_directory = clothlab_test::render_reference_directory;
 
 bool updating_references() {
   const char* update = std::getenv("CLOTHLAB_UPDATE_REFERENCES");
