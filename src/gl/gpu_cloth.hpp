@@ -1,30 +1,6 @@
 // Handout section 5, questions 11 to 13: the cloth of spring_mesh simulated on the GPU with
 // fragment shaders, in single precision, by exactly the model of docs/model.md.
 //
-// BEGIN TEACHER: question 11 asks the student to find this structure by reading the code
-// Question 11, the structure. The state lives in N x N GL_RGBA32F textures, one texel per
-// particle: texel (ku, kv) holds particle k = ku + N kv (the CPU's index).
-//   position texture  xyz: p (m)      w: 1 if the particle is pinned (never moves), else 0
-//   velocity texture  xyz: v (m/s)    w: 0
-//   normal texture    xyz: n (unit)   w: 0, the normal of the CURRENT positions
-// The shaders are fragment shaders: the CPU draws one triangle covering an N x N viewport, so
-// that the fragment shader runs once per texel, i.e. once per particle, and writes that
-// particle's new values. The cloth drawn on screen is a flat N x N grid sent once by the CPU; its
-// vertex shader fetches each vertex's position and normal from these textures
-// (renderer::draw_from_textures).
-//
-// One step, two full-screen passes (shaders/), and a third when the cloth tears:
-//   1. gpu_step.frag (questions 12, 13): reads position, velocity and normal; sums the forces of
-//      the particle's own up to 12 springs (structural, shear, bending) and the wind, then runs
-//      the integrator and the ground contact; writes the new position and the new velocity
-//      (two render targets) into the other copy of each: positions and velocities ping-pong.
-//   2. gpu_normal.frag: the normals of the new positions (central differences), so that the
-//      renderer and the next step's wind see the normals of the current positions.
-//   3. gpu_tear.frag (tearing, an addition, only with tear_strain > 0): the springs that the new
-//      positions stretch beyond (1 + eps) L0 are removed from the spring mask.
-// All use gpu_full_screen.vert.
-// END TEACHER
-//
 // The spring mask (tearing, an addition): an N x N GL_R32UI texture whose texel (ku, kv) has bit
 // i set while a spring joins the particle to its neighbour neighbour_offsets[i] (inside the grid,
 // not torn). The tear pass writes it into the other copy of a ping-pong pair. A spring's two ends
