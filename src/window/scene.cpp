@@ -560,8 +560,10 @@ void scene::simulate(int steps, double wall_clock_budget) {
   if (on_gpu)
     glFinish();
   const double stepping_seconds = seconds_since(start);
-  // The state comes back only for what the panel shows, at a bounded rate.
-  if (on_gpu && done > 0 && panel_needs_state && !state_fresh_ &&
+  // The state comes back only for what the panel shows, at a bounded rate; and, while the cloth
+  // can tear, for the springs overlay, whose lines are the springs of cloth_stage.
+  const bool overlay_needs_state = display.show_springs && cloth_stage.parameters.tear_strain > 0.0;
+  if (on_gpu && done > 0 && (panel_needs_state || overlay_needs_state) && !state_fresh_ &&
       seconds_since(last_readback_) >= 1.0 / max_readbacks_per_second)
     read_gpu_state();
   measure_rates(done, stepping_seconds);

@@ -148,8 +148,9 @@ class scene {
   }
   // Set by the panel every frame: whether what it shows needs the cloth's state on the CPU (the
   // energy plot, the state images). On the GPU paths the state is read back only then, at most
-  // max_readbacks_per_second times a second; otherwise never (the divergence check runs on the
-  // GPU and the drawing reads the GPU's own buffers).
+  // max_readbacks_per_second times a second, and so while the springs overlay shows a cloth that
+  // can tear (its lines are cloth_stage's springs); otherwise never (the divergence check runs on
+  // the GPU and the drawing reads the GPU's own buffers).
   bool panel_needs_state = true;
   static constexpr double max_readbacks_per_second = 10.0;
   long readbacks() const { return readbacks_; }  // GPU -> CPU read-backs of the whole state
