@@ -276,7 +276,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   app.add_option("--sweep-N", sweep_n, "Sweep grid sizes (cloth) or chain lengths (coupled)");
   add_number("--sweep-time", o.sweep_time, "Simulated seconds per sweep cell (2)", false);
   app.add_option("--drag", drag, "Pull particle (KU,KV) towards X,Y,Z: KU,KV:X,Y,Z (cloth)");
-  add_number("--drag-stiffness", drag_stiffness, "Drag spring K_d, N/m", false)
+  add_number("--drag-stiffness", drag_stiffness,
+             "Drag spring K_d, N/m (--drag, and the mouse on every stage)", false)
       ->default_str(format_number(cloth.drag.stiffness));
   app.add_option("--sphere", sphere, "A sphere to collide with: X,Y,Z,R (cloth)");
   add_number("--sphere-friction", sphere_friction, "Sphere friction rate mu_s, 1/s", false)
@@ -481,6 +482,7 @@ parse_result parse_command_line(int argc, const char* const* argv) {
             "mu_g dt = " + format_number(cloth.ground_friction * cloth.dynamics.time_step) +
                 " must be at most 1");
     require_within("--drag-stiffness", cloth.drag.stiffness, stiffness_bounds);
+    o.spring.drag.stiffness = o.coupled.drag.stiffness = cloth.drag.stiffness;  // the mouse's
     require_finite("--sphere-friction", cloth.sphere.friction);
     require(cloth.sphere.friction >= 0, "--sphere-friction", cloth.sphere.friction,
             "must be at least 0");
@@ -541,8 +543,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     if (app.count("--threads") > 0 && o.backend != backend_kind::cpu_parallel)
       throw usage_error{"--threads: only with --backend cpu-parallel"};
     if (o.stage != stage_kind::cloth) {
-      for (const auto* option : {"--drag", "--drag-stiffness", "--sphere", "--sphere-friction",
-                                 "--tear-strain", "--self-collision"}) {
+      for (const auto* option :
+           {"--drag", "--sphere", "--sphere-friction", "--tear-strain", "--self-collision"}) {
         if (app.count(option) > 0)
           throw usage_error{std::string(option) + ": the cloth's; use it with --stage cloth"};
       }

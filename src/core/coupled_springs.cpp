@@ -62,6 +62,10 @@ void coupled_springs::compute_force(std::span<const double> position,
     add(i - 1, -F);
   }
   // END SOLUTION Q5
+
+  // The mouse drag (an addition, docs/model.md): F_d = K_d (q - p_k) on the dragged mass k;
+  // the fixed p0 cannot be dragged.
+  add_mass_drag_force(parameters.drag, particles_.is_fixed, position, force);
 }
 
 void coupled_springs::apply_force() {

@@ -21,7 +21,8 @@ class coupled_springs {
 
   void load_model();  // initialisation of the chain (rebuilds it for mass_count)
   // Force computation (question 5): the forces of every spring of the chain on both of its
-  // ends, from the current positions, into particles().force.
+  // ends, and the mouse drag on one mass when it is on (parameters.drag), from the current
+  // positions, into particles().force.
   void compute_force();
   // The same forces at any positions (flat, 3k + c), for the integrators with several stages.
   void compute_force(std::span<const double> position, std::span<double> force) const;

@@ -3,9 +3,11 @@
 // the implicit scheme differentiates.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <span>
 
+#include "parameters.hpp"
 #include "spring.hpp"
 
 namespace clothlab {
@@ -32,5 +34,11 @@ void evaluate_forces(const force_model& forces, std::span<const double> position
 // force <- the forces of the given springs alone: zero, then every set in order (equation 2).
 void compute_spring_forces(std::span<const spring_set> sets, std::span<const double> position,
                            std::span<double> force);
+
+// The mouse drag on a mass of stages 1 and 2 (model.md, "Drag"): adds F_d = K_d (q - p_k) to
+// force[k], k = drag.mass, when the drag is on, k is one of the particles and it is not fixed
+// (the fixed p0 cannot be dragged). Positions and forces flat, 3k + c.
+void add_mass_drag_force(const mass_drag_parameters& drag, std::span<const std::uint8_t> is_fixed,
+                         std::span<const double> position, std::span<double> force);
 
 }  // namespace clothlab

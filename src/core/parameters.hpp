@@ -44,17 +44,32 @@ struct dynamics_parameters {
   integrator_kind integrator = integrator_kind::semi_implicit;
 };
 
+// K_d, N/m: the default stiffness of the mouse drag's spring, on every stage.
+inline constexpr double default_drag_stiffness = 1000.0;
+
+// The mouse drag on a mass of stages 1 and 2 (an addition, docs/model.md "Drag"): particle
+// `mass` is pulled towards the target q by a spring of stiffness K_d and rest length 0,
+// F_d = K_d (q - p). The fixed p0 (particle 0) cannot be dragged.
+struct mass_drag_parameters {
+  bool enabled = false;
+  int mass = 1;                               // the dragged particle: 1..n (0 is the fixed p0)
+  glm::dvec3 target = {0, 0, 0};              // q, m
+  double stiffness = default_drag_stiffness;  // K_d, N/m
+};
+
 // Stage 1: one spring from the fixed p0 = (0.1, 0, 1) to p1 (handout section 3).
 struct single_spring_parameters {
   dynamics_parameters dynamics{.time_step = 0.01, .damping = 0.2};
-  double stiffness = 20.0;  // K, N/m
+  double stiffness = 20.0;    // K, N/m
+  mass_drag_parameters drag;  // the mouse drag on p1 (addition)
 };
 
 // Stage 2: a chain of masses hanging from p0 (question 5).
 struct coupled_springs_parameters {
   dynamics_parameters dynamics{.time_step = 0.01, .damping = 0.2};
-  double stiffness = 20.0;  // K, N/m, of every spring of the chain
-  int mass_count = 2;       // n, moving masses (1 gives the single spring)
+  double stiffness = 20.0;    // K, N/m, of every spring of the chain
+  int mass_count = 2;         // n, moving masses (1 gives the single spring)
+  mass_drag_parameters drag;  // the mouse drag on one mass of the chain (addition)
 };
 
 enum class pin_mode {
@@ -79,8 +94,8 @@ struct drag_parameters {
   bool enabled = false;
   int ku = 0;  // the dragged particle (ku, kv)
   int kv = 0;
-  glm::dvec3 target = {0, 0, 0};  // q, m
-  double stiffness = 1000.0;      // K_d, N/m
+  glm::dvec3 target = {0, 0, 0};              // q, m
+  double stiffness = default_drag_stiffness;  // K_d, N/m
 };
 
 // A sphere the cloth collides with (after the integrator, before the ground).

@@ -22,14 +22,20 @@ void single_spring::load_model() {
 }
 
 void single_spring::compute_force() {
+  compute_force(particles_.position, particles_.force);
+}
+
+void single_spring::compute_force(std::span<const double> position, std::span<double> force) const {
   const spring_set sets[] = {{springs_, parameters.stiffness}};
-  compute_spring_forces(sets, particles_.position, particles_.force);
+  compute_spring_forces(sets, position, force);
+  // The mouse drag (an addition, docs/model.md): F_d = K_d (q - p1) on p1; p0 is fixed.
+  add_mass_drag_force(parameters.drag, particles_.is_fixed, position, force);
 }
 
 void single_spring::apply_force() {
   const spring_set sets[] = {{springs_, parameters.stiffness}};
-  const auto forces_at = [&sets](std::span<const double> position, std::span<double> force) {
-    compute_spring_forces(sets, position, force);
+  const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
+    compute_force(position, force);
   };
   integrator_.step(parameters.dynamics, {sets, forces_at}, particles_);
 }

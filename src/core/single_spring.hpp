@@ -18,9 +18,13 @@ class single_spring {
 
   explicit single_spring(const single_spring_parameters& p = {});
 
-  void load_model();     // initialisation: p0, p1, v1 and L0 = |p1 - p0| (particle 0 is p0)
-  void compute_force();  // force computation: the spring force on both ends (equation 2)
-  void apply_force();    // numerical integration of one step (model.md)
+  void load_model();  // initialisation: p0, p1, v1 and L0 = |p1 - p0| (particle 0 is p0)
+  // Force computation: the spring force on both ends (equation 2), and the mouse drag on p1
+  // when it is on (parameters.drag), from the current positions, into particles().force.
+  void compute_force();
+  // The same forces at any positions (flat, 3k + c), for the integrators with several stages.
+  void compute_force(std::span<const double> position, std::span<double> force) const;
+  void apply_force();  // numerical integration of one step (model.md)
   void step() {
     compute_force();
     apply_force();

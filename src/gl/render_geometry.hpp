@@ -58,6 +58,10 @@ std::vector<float> make_grid_texture_coordinates(int n);
 // Texel of each particle in the N x N state textures: (ku, kv), 2 ints per particle.
 std::vector<std::int32_t> make_grid_texels(int n);
 
+// The radii of the spheres that draw stages 1 and 2 (the mouse picks a mass by them), m.
+inline constexpr float chain_mass_radius = 0.085f;         // a moving mass
+inline constexpr float chain_fixed_point_radius = 0.045f;  // the fixed p0
+
 // Height of the floor drawn under a chain hanging from a fixed point at height top_z (stages 1
 // and 2). Spring i carries the weight of every mass below it, so at rest it is stretched by
 // (masses below) m g / K beyond its rest length. The masses start at the springs' rest lengths,

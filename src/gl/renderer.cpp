@@ -53,10 +53,10 @@ const std::array<glm::vec4, 3> spring_family_colours = {
     glm::vec4{0.98f, 0.60f, 0.02f, 0.75f}   // bending: amber
 };
 const glm::vec4 wind_arrow_colour = {0.10f, 0.30f, 0.70f, 1.0f};
-constexpr double wind_arrow_height = 0.35;    // m, above the cloth's highest particle
-constexpr float mass_radius = 0.085f;         // m, as drawn
-constexpr float fixed_point_radius = 0.045f;  // m
-constexpr float pin_radius = 0.022f;          // m
+constexpr double wind_arrow_height = 0.35;        // m, above the cloth's highest particle
+constexpr float mass_radius = chain_mass_radius;  // m, as drawn
+constexpr float fixed_point_radius = chain_fixed_point_radius;  // m
+constexpr float pin_radius = 0.022f;                            // m
 constexpr int sphere_slices = 24;
 constexpr int sphere_stacks = 16;
 constexpr int floats_per_sphere = 7;  // per instance: centre xyz, radius, colour rgb

@@ -455,8 +455,15 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool clo
 constexpr double max_spring_time_step = 0.1;  // s, spring and chain
 constexpr double max_cloth_time_step = 0.02;  // s
 constexpr double max_stiffness = 1e5;         // N/m: far past every stability limit
+constexpr double max_drag_stiffness = 1e5;    // K_d, N/m
 // N: stronger wind folds the default cloth through itself (without self-collision).
 constexpr double max_wind_strength = 20.0;
+
+// Issue 10: the mouse drag's spring on a mass of stages 1 and 2.
+void edit_mass_drag(mass_drag_parameters& drag) {
+  fixed_lines("left drag on a mass: pull it (p0 is fixed)", 1, text_style::disabled);
+  slider("drag stiffness K_d (N/m)", drag.stiffness, 1.0, max_drag_stiffness, "%.0f", true);
+}
 
 void edit_single_spring(scene& the_scene, user_actions& actions) {
   single_spring& stage = the_scene.spring_stage;
@@ -467,6 +474,8 @@ void edit_single_spring(scene& the_scene, user_actions& actions) {
   }
   if (section("Q2 motion: extension x(t), exact solution, error"))
     show_spring_motion(the_scene, actions);
+  if (section("Mouse"))
+    edit_mass_drag(stage.parameters.drag);
 }
 
 void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
@@ -478,6 +487,8 @@ void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
     slider("stiffness K (N/m)", stage.parameters.stiffness, 0.0, max_stiffness, "%.2f", true);
     show_stability(estimate_stability(stage));
   }
+  if (section("Mouse"))
+    edit_mass_drag(stage.parameters.drag);
 }
 
 // Question 11: the three state textures, side by side, texel (ku, kv) = particle ku + N kv; the
@@ -679,7 +690,7 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   cloth_parameters& p = the_scene.cloth_stage.parameters;
   fixed_lines("left drag on the cloth: pull a particle; Shift + left drag: move the sphere", 2,
               text_style::disabled);
-  slider("drag stiffness K_d (N/m)", p.drag.stiffness, 1.0, 1e5, "%.0f", true);
+  slider("drag stiffness K_d (N/m)", p.drag.stiffness, 1.0, max_drag_stiffness, "%.0f", true);
   ImGui::Checkbox("sphere", &p.sphere.enabled);
   ImGui::SameLine();
   if (ImGui::Button("Drape over a sphere (resets)")) {
@@ -887,7 +898,7 @@ void build_key_help(bool& open) {
       {"G", "cloth: next path (CPU, GPU fragment, GPU compute)"},
       {"M", "cloth: measure every path's steps/s"},
       {"Esc", "quit"},
-      {"left drag", "on the cloth: pull it; elsewhere: orbit"},
+      {"left drag", "on the cloth or a mass: pull it; elsewhere: orbit"},
       {"Shift+left drag", "move the sphere"},
       {"right drag", "pan"},
       {"wheel", "zoom"},

@@ -34,6 +34,43 @@ std::optional<double> ray_triangle(const pick_ray& ray, const glm::dvec3& a, con
   return t;
 }
 
+// The particle seen nearest to the ray, within max_angle (rad, from the eye); particles behind
+// the eye are not seen.
+std::optional<std::size_t> nearest_within_angle(const particle_system& particles,
+                                                const pick_ray& ray, double max_angle) {
+  std::optional<std::size_t> best;
+  double best_angle = max_angle;
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const glm::dvec3 to_particle = particles.get_position(k) - ray.origin;
+    const double along = glm::dot(to_particle, ray.direction);
+    if (along <= 0.0)
+      continue;  // behind the eye
+    const double across = glm::length(to_particle - along * ray.direction);
+    const double angle = std::atan2(across, along);
+    if (angle <= best_angle) {
+      best_angle = angle;
+      best = k;
+    }
+  }
+  return best;
+}
+
+// The ray parameter t > 0 at which the ray enters the sphere (centre, radius), or nullopt.
+// With d the unit direction and o = origin - centre: t^2 + 2 (o.d) t + |o|^2 - r^2 = 0.
+std::optional<double> ray_sphere(const pick_ray& ray, const glm::dvec3& centre, double radius) {
+  const glm::dvec3 o = ray.origin - centre;
+  const double half_b = glm::dot(o, ray.direction);
+  const double c = glm::dot(o, o) - radius * radius;
+  const double discriminant = half_b * half_b - c;
+  if (discriminant < 0.0)
+    return std::nullopt;
+  const double root = std::sqrt(discriminant);
+  const double t = -half_b - root >= 0.0 ? -half_b - root : -half_b + root;  // eye inside: exit
+  if (t < 0.0)
+    return std::nullopt;
+  return t;
+}
+
 }  // namespace
 
 pick_ray ray_through(const camera& view, float aspect, double ndc_x, double ndc_y) {
@@ -87,21 +124,26 @@ std::optional<std::size_t> pick_particle(const spring_mesh& cloth, const pick_ra
   }
 
   // 2. No triangle: the particle seen nearest to the ray, within max_angle.
-  std::optional<std::size_t> best;
-  double best_angle = max_angle;
+  return nearest_within_angle(particles, ray, max_angle);
+}
+
+std::optional<std::size_t> pick_mass(const particle_system& particles, const pick_ray& ray,
+                                     double mass_radius, double fixed_radius, double max_angle) {
+  // 1. The first drawn sphere the ray crosses.
+  std::optional<std::size_t> first;
+  double first_t = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < particles.size(); ++k) {
-    const glm::dvec3 to_particle = particles.get_position(k) - ray.origin;
-    const double along = glm::dot(to_particle, ray.direction);
-    if (along <= 0.0)
-      continue;  // behind the eye
-    const double across = glm::length(to_particle - along * ray.direction);
-    const double angle = std::atan2(across, along);
-    if (angle <= best_angle) {
-      best_angle = angle;
-      best = k;
+    const double radius = particles.is_fixed[k] ? fixed_radius : mass_radius;
+    const std::optional<double> t = ray_sphere(ray, particles.get_position(k), radius);
+    if (t && *t < first_t) {
+      first_t = *t;
+      first = k;
     }
   }
-  return best;
+  if (first)
+    return first;
+  // 2. None: the particle seen nearest to the ray, within max_angle.
+  return nearest_within_angle(particles, ray, max_angle);
 }
 
 glm::dvec3 point_on_plane(const pick_ray& ray, const glm::dvec3& point, const glm::dvec3& normal) {

@@ -1,6 +1,7 @@
-// The mouse on the cloth (issue 10): which particle is under the cursor, and where the cursor is
-// in the plane facing the camera through a point. Geometry only, no GL: the window's mouse
-// handler (window_main.cpp) and the scene (scene.cpp) call these, and the tests run them alone.
+// The mouse on the cloth and on the masses of stages 1 and 2 (issue 10): which particle is under
+// the cursor, and where the cursor is in the plane facing the camera through a point. Geometry
+// only, no GL: the window's mouse handler (window_main.cpp) and the scene (scene.cpp) call these,
+// and the tests run them alone.
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -9,6 +10,7 @@
 #include <optional>
 
 #include "camera.hpp"
+#include "particle_system.hpp"
 #include "spring_mesh.hpp"
 
 namespace clothlab {
@@ -32,6 +34,15 @@ pick_ray ray_through(const camera& view, float aspect, double ndc_x, double ndc_
 // nullopt when neither. Pinned particles are returned like the others (the caller refuses them).
 std::optional<std::size_t> pick_particle(const spring_mesh& cloth, const pick_ray& ray,
                                          double max_angle);
+
+// The mass of stage 1 or 2 the user means by pressing along `ray`, the masses drawn as spheres
+// (moving masses of radius mass_radius, fixed ones of radius fixed_radius, m):
+//  - the ray crosses spheres: the particle whose sphere it crosses first (nearest the eye);
+//  - it crosses none: the particle nearest to the ray within max_angle (rad, as seen from the
+//    eye), for a press just beside a mass.
+// nullopt when neither. The fixed p0 is returned like the others (the caller refuses it).
+std::optional<std::size_t> pick_mass(const particle_system& particles, const pick_ray& ray,
+                                     double mass_radius, double fixed_radius, double max_angle);
 
 // Where the ray meets the plane through `point` whose normal is `normal` (the camera's viewing
 // direction): the point under the cursor at the grabbed point's depth. A ray parallel to the

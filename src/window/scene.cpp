@@ -11,8 +11,8 @@
 #include <utility>
 
 #include "gl.hpp"
-#include "render_geometry.hpp"
-#include "shader.hpp"  // shader_path  // chain_floor_height
+#include "render_geometry.hpp"  // chain_floor_height, chain_mass_radius
+#include "shader.hpp"           // shader_path
 #include "stability.hpp"
 
 namespace clothlab {
@@ -156,6 +156,7 @@ camera scene::framed_view() const {
 }
 
 void scene::select_stage(stage_kind stage) {
+  release_grab();  // a drag ends with its stage's
   stage_ = stage;
   view = framed_view();
   unsimulated_seconds_ = 0.0;
@@ -335,9 +336,60 @@ std::optional<glm::dvec2> scene::framebuffer_point(const glm::dvec3& point) cons
                     (1.0 - clip.y / clip.w) / 2.0 * viewport_height_);
 }
 
+mass_drag_parameters* scene::mass_drag() {
+  return stage_ == stage_kind::spring    ? &spring_stage.parameters.drag
+         : stage_ == stage_kind::coupled ? &chain_stage.parameters.drag
+                                         : nullptr;
+}
+
+const mass_drag_parameters* scene::mass_drag() const {
+  return stage_ == stage_kind::spring    ? &spring_stage.parameters.drag
+         : stage_ == stage_kind::coupled ? &chain_stage.parameters.drag
+                                         : nullptr;
+}
+
+const particle_system& scene::mass_particles() const {
+  return stage_ == stage_kind::spring ? spring_stage.particles() : chain_stage.particles();
+}
+
+bool scene::grabbing() const {
+  if (const mass_drag_parameters* drag = mass_drag())
+    return drag->enabled;
+  return cloth_stage.parameters.drag.enabled;
+}
+
+glm::dvec3 scene::drag_target() const {
+  if (const mass_drag_parameters* drag = mass_drag())
+    return drag->target;
+  return cloth_stage.parameters.drag.target;
+}
+
 bool scene::grab_particle(const pick_ray& ray, double max_angle) {
-  if (stage_ != stage_kind::cloth || status().diverged)
+  if (status().diverged)
     return false;
+  if (mass_drag_parameters* drag = mass_drag()) {  // stages 1 and 2: a mass
+    const particle_system& particles = mass_particles();
+    const std::optional<std::size_t> picked =
+        pick_mass(particles, ray, chain_mass_radius, chain_fixed_point_radius, max_angle);
+    if (!picked)
+      return false;
+    const std::string stage = std::string(stage_name(stage_));
+    if (particles.is_fixed[*picked]) {
+      std::printf("clothlab-window: p%zu of the %s stage is fixed: it cannot be dragged\n", *picked,
+                  stage.c_str());
+      std::fflush(stdout);
+      return false;
+    }
+    const glm::dvec3 position = particles.get_position(*picked);
+    drag->enabled = true;
+    drag->mass = static_cast<int>(*picked);
+    drag->target = position;
+    grab_plane_point_ = position;
+    std::printf("clothlab-window: grabbed mass %zu of the %s stage at (%.3f, %.3f, %.3f)\n",
+                *picked, stage.c_str(), position.x, position.y, position.z);
+    std::fflush(stdout);
+    return true;
+  }
   if (cloth_on_gpu())
     read_gpu_state();  // the positions the user sees, once, at the press
   const std::optional<std::size_t> picked = pick_particle(cloth_stage, ray, max_angle);
@@ -365,16 +417,30 @@ bool scene::grab_particle(const pick_ray& ray, double max_angle) {
 }
 
 void scene::drag_grabbed(const pick_ray& ray) {
-  if (grabbing())
-    cloth_stage.parameters.drag.target =
-        point_on_plane(ray, grab_plane_point_, viewing_direction(view));
+  if (!grabbing())
+    return;
+  const glm::dvec3 target = point_on_plane(ray, grab_plane_point_, viewing_direction(view));
+  if (mass_drag_parameters* drag = mass_drag())
+    drag->target = target;
+  else
+    cloth_stage.parameters.drag.target = target;
 }
 
 void scene::release_grab() {
-  drag_parameters& drag = cloth_stage.parameters.drag;
-  if (!drag.enabled)
+  if (!grabbing())
     return;
   const glm::dvec3 position = grabbed_position();
+  if (mass_drag_parameters* drag = mass_drag()) {
+    drag->enabled = false;
+    std::printf(
+        "clothlab-window: released mass %d of the %s stage at (%.3f, %.3f, %.3f), target (%.3f, "
+        "%.3f, %.3f)\n",
+        drag->mass, std::string(stage_name(stage_)).c_str(), position.x, position.y, position.z,
+        drag->target.x, drag->target.y, drag->target.z);
+    std::fflush(stdout);
+    return;
+  }
+  drag_parameters& drag = cloth_stage.parameters.drag;
   drag.enabled = false;
   std::size_t springs = 0;  // fewer than at the start when the cloth tore
   for (const spring_family family : all_spring_families)
@@ -388,6 +454,11 @@ void scene::release_grab() {
 }
 
 glm::dvec3 scene::grabbed_position() {
+  if (const mass_drag_parameters* mass = mass_drag()) {
+    const particle_system& particles = mass_particles();
+    return particles.get_position(
+        std::min(static_cast<std::size_t>(std::max(mass->mass, 0)), particles.size() - 1));
+  }
   const drag_parameters& drag = cloth_stage.parameters.drag;
   const int n = cloth_stage.grid_size();
   const std::size_t k =

@@ -166,18 +166,21 @@ class scene {
   // again when the cloth stepped since the last call (needs the GL context).
   const state_images& state_textures();
   bool state_textures_from_gpu() const { return state_images_from_gpu_; }
-  // The mouse on the cloth (issue 10; model.md, "drag"). At a left press, grab_particle picks
-  // the particle under the ray (picking.hpp) from the cloth's current positions (on the GPU path
-  // read back once, at the press). A pinned particle cannot be dragged: nothing is grabbed and
-  // it returns false (the press then orbits). While the button is held, drag_grabbed sets the
-  // drag target every frame: the point of the ray in the plane that faces the camera through the
-  // grabbed point (as it was at the press). release_grab ends the drag. Each prints a line.
+  // The mouse on the cloth and on the masses of stages 1 and 2 (issue 10; model.md, "drag").
+  // At a left press, grab_particle picks what is under the ray (picking.hpp): on the cloth the
+  // particle, from its current positions (on the GPU path read back once, at the press); on
+  // stages 1 and 2 the mass whose drawn sphere the ray crosses. A pinned particle or the fixed
+  // p0 cannot be dragged: nothing is grabbed and it returns false (the press then orbits). While
+  // the button is held, drag_grabbed sets the drag target every frame: the point of the ray in
+  // the plane that faces the camera through the grabbed point (as it was at the press).
+  // release_grab ends the drag (selecting another stage does too). Each prints a line.
   bool grab_particle(const pick_ray& ray, double max_angle);
   void drag_grabbed(const pick_ray& ray);
   void release_grab();
-  bool grabbing() const { return cloth_stage.parameters.drag.enabled; }
+  bool grabbing() const;  // a particle or mass of the current stage is being dragged
   // The dragged particle's position now (on the GPU path one texel read back), m.
   glm::dvec3 grabbed_position();
+  glm::dvec3 drag_target() const;  // q, m: where the current stage's drag pulls
   // Shift + left drag: the sphere follows the cursor in the plane facing the camera through its
   // centre (as it was at the press).
   void start_sphere_move(const pick_ray& ray);
@@ -242,6 +245,11 @@ class scene {
   void record_energy();
   void restart_energy_history();
   void load_spring_stage();
+  // The mouse drag of the current stage when it is stage 1 or 2; nullptr on the cloth (whose
+  // drag, cloth_stage.parameters.drag, names the particle by (ku, kv)).
+  mass_drag_parameters* mass_drag();
+  const mass_drag_parameters* mass_drag() const;
+  const particle_system& mass_particles() const;  // the particles of stage 1 or 2 (current)
 
   run_status& current_status() { return status_[static_cast<int>(stage_)]; }
 

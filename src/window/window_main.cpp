@@ -119,9 +119,10 @@ user_actions actions_from_keys(const std::vector<int>& pressed_keys) {
   return actions;
 }
 
-// The mouse, unless it is over the panel. A left drag that starts on the cloth grabs the
-// particle under the cursor and pulls it (scene::grab_particle); Shift + left drag moves the
-// sphere; any other left drag orbits. Right drag pans, the wheel zooms.
+// The mouse, unless it is over the panel. A left drag that starts on the cloth (or on a mass of
+// stages 1 and 2) grabs the particle under the cursor and pulls it (scene::grab_particle);
+// Shift + left drag moves the cloth's sphere; any other left drag orbits. Right drag pans, the
+// wheel zooms.
 class mouse_control {
  public:
   void update(GLFWwindow* window, double scroll, scene& the_scene) {
@@ -188,14 +189,13 @@ class mouse_control {
       the_scene.start_sphere_move(ray);
       return left_drag::sphere;
     }
-    if (!shift && cloth &&
-        the_scene.grab_particle(ray, pick_radius_pixels * the_scene.radians_per_pixel()))
+    if (!shift && the_scene.grab_particle(ray, pick_radius_pixels * the_scene.radians_per_pixel()))
       return left_drag::grab;
     return left_drag::orbit;
   }
 
   // Ends the drag with a line saying what it did and where the camera is (the window tests read
-  // it: a drag on the cloth leaves the camera where it was).
+  // it: a drag on the cloth or a mass leaves the camera where it was).
   void end_left_drag(scene& the_scene) {
     if (left_drag_ == left_drag::grab) {
       the_scene.release_grab();
@@ -222,13 +222,12 @@ class mouse_control {
   left_drag left_drag_ = left_drag::none;
 };
 
-// While a particle is grabbed: a thin line from it to the drag target, over the scene.
+// While a particle or mass is grabbed: a thin line from it to the drag target, over the scene.
 void draw_drag_line(scene& the_scene) {
-  if (!the_scene.grabbing() || the_scene.stage() != stage_kind::cloth)
+  if (!the_scene.grabbing())
     return;
   const std::optional<glm::dvec2> from = the_scene.framebuffer_point(the_scene.grabbed_position());
-  const std::optional<glm::dvec2> to =
-      the_scene.framebuffer_point(the_scene.cloth_stage.parameters.drag.target);
+  const std::optional<glm::dvec2> to = the_scene.framebuffer_point(the_scene.drag_target());
   if (!from || !to)
     return;
   const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;  // framebuffer -> ImGui units

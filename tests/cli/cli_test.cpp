@@ -293,6 +293,9 @@ INSTANTIATE_TEST_SUITE_P(
         // Issue 10: the drag, the sphere, tearing, self-collision.
         arguments{"--drag", "3,3:0.2,0.2,0.3"},
         arguments{"--drag", "3,3:0,0,0", "--drag-stiffness", "500"},
+        // The mouse's drag spring on stages 1 and 2 (in the window; headless there is no mouse).
+        arguments{"--stage", "spring", "--drag-stiffness", "500"},
+        arguments{"--stage", "coupled", "--drag-stiffness", "500"},
         arguments{"--sphere", "0,0,-0.5,0.3", "--obj", "out.obj"},
         arguments{"--sphere", "0,0,-0.5,0.3", "--sphere-friction", "2", "--backend", "gpu"},
         arguments{"--tear-strain", "0.5", "--obj", "out.obj"},
@@ -667,6 +670,16 @@ INSTANTIATE_TEST_SUITE_P(
         bad_usage{"DragAPinnedCorner", {"--drag", "3,0:0,0,0"}, "is pinned"},
         bad_usage{"DragWithoutTarget", {"--drag", "1,1"}, "--drag 1,1"},
         bad_usage{"DragFarAway", {"--drag", "1,1:0,0,1e5"}, "--drag"},
+        // The particle (KU, KV) is the cloth's: the masses of stages 1 and 2 take the mouse only.
+        bad_usage{"DragOnTheChain",
+                  {"--stage", "coupled", "--drag", "1,1:0,0,0"},
+                  "--drag: the cloth's; use it with --stage cloth"},
+        bad_usage{"DragOnTheSpring",
+                  {"--stage", "spring", "--drag", "0,1:0,0,0"},
+                  "--drag: the cloth's; use it with --stage cloth"},
+        bad_usage{"DragStiffnessOutOfRangeOnTheChain",
+                  {"--stage", "coupled", "--drag-stiffness", "-5"},
+                  "--drag-stiffness -5"},
         bad_usage{"SphereWithoutRadius", {"--sphere", "0,0,0"}, "--sphere"},
         bad_usage{"SphereOfNoRadius", {"--sphere", "0,0,0,0"}, "--sphere 0"},
         bad_usage{"SphereFrictionTooHigh",

@@ -1,5 +1,6 @@
 // The spring force (handout equation 2) and stages 1 and 2 (single spring, coupled springs):
-// initial states from model.md and first steps computed by hand.
+// initial states from model.md and first steps computed by hand; the mouse drag on a mass
+// (model.md, "Drag": F_d = K_d (q - p) added to the dragged mass's force).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -159,6 +160,158 @@ TEST(CoupledSprings, FirstStepMatchesTheHandComputation) {
   expect_vec_eq(particles.get_position(1), {0.1, 0.0, 0.5 - 0.00098}, "p1");
   expect_vec_eq(particles.get_position(2), {0.1, 0.0, 0.0 - 0.00098}, "p2");
   expect_vec_eq(particles.get_position(3), {0.10998, -0.00998, -0.5 - 0.00098}, "p3");
+}
+
+// ---- The mouse drag on a mass (issue 10; model.md, "Drag") ----------------------------------
+
+void expect_vec_near(const glm::dvec3& actual, const glm::dvec3& expected, double tolerance,
+                     const char* what) {
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(actual[c], expected[c], tolerance) << what << ", coordinate " << c;
+  }
+}
+
+// A stage (single spring, or a chain of one mass) with p1 = (0.7, 0, 0.2) at rest, pulled by the
+// drag (K_d = 100) towards q = (0.2, 0.5, 0.4). K = 20, L0 = 0.5, p0 = (0.1, 0, 1):
+//   d = p1 - p0 = (0.6, 0, -0.8), |d| = 1, spring F_s = 20 (0.5 - 1) d = (-6, 0, 8)
+//   drag F_d = 100 (q - p1) = 100 (-0.5, 0.5, 0.2) = (-50, 50, 20)
+//   F1 = F_s + F_d = (-56, 50, 28).
+// One semi-implicit step (dt = 0.01, mu = 0.2, m = 1, g0 = 9.8) from v1 = 0:
+//   v1' = 0.01 (F1 / m + g) = (-0.56, 0.5, 0.182), p1' = p1 + 0.01 v1' = (0.6944, 0.005, 0.20182)
+// A chain of n masses in its initial state.
+coupled_springs chain_of(int n) {
+  coupled_springs_parameters p;
+  p.mass_count = n;
+  return coupled_springs(p);
+}
+
+template <class Stage>
+void pull_p1_by_hand(Stage& stage) {
+  stage.parameters.drag = {
+      .enabled = true, .mass = 1, .target = {0.2, 0.5, 0.4}, .stiffness = 100.0};
+  stage.particles().set_position(1, {0.7, 0.0, 0.2});
+  stage.particles().set_velocity(1, {0.0, 0.0, 0.0});
+}
+
+TEST(SingleSpringDrag, ForceOnP1IsTheSpringPlusKdTimesTargetMinusPosition) {
+  single_spring stage;
+  pull_p1_by_hand(stage);
+  stage.compute_force();
+  expect_vec_near(stage.particles().get_force(1), {-56.0, 50.0, 28.0}, 1e-12, "F1");
+  // p0 feels the spring's reaction only.
+  expect_vec_near(stage.particles().get_force(0), {6.0, 0.0, -8.0}, 1e-12, "F0");
+  stage.apply_force();
+  expect_vec_near(stage.particles().get_velocity(1), {-0.56, 0.5, 0.182}, 1e-12, "v1");
+  expect_vec_near(stage.particles().get_position(1), {0.6944, 0.005, 0.20182}, 1e-12, "p1");
+}
+
+// The chain's Q5 stub is exact for one mass (its only spring on mass 1), so this holds on the
+// student's copy as well.
+TEST(CoupledSpringsDrag, ForceOnTheOnlyMassIsTheSpringPlusKdTimesTargetMinusPosition) {
+  coupled_springs stage = chain_of(1);
+  pull_p1_by_hand(stage);
+  stage.step();
+  expect_vec_near(stage.particles().get_force(1), {-56.0, 50.0, 28.0}, 1e-12, "F1");
+  expect_vec_near(stage.particles().get_velocity(1), {-0.56, 0.5, 0.182}, 1e-12, "v1");
+  expect_vec_near(stage.particles().get_position(1), {0.6944, 0.005, 0.20182}, 1e-12, "p1");
+}
+
+// The fixed p0 cannot be dragged: a drag on particle 0 (or on no particle at all) adds nothing.
+// Same state as above: F0 is the spring's reaction (6, 0, -8), F1 the spring's (-6, 0, 8).
+TEST(SingleSpringDrag, TheFixedPointCannotBeDragged) {
+  for (const int mass : {0, 2, -1}) {
+    single_spring stage;
+    pull_p1_by_hand(stage);
+    stage.parameters.drag.mass = mass;
+    stage.step();
+    expect_vec_near(stage.particles().get_force(0), {6.0, 0.0, -8.0}, 1e-12, "F0");
+    expect_vec_near(stage.particles().get_force(1), {-6.0, 0.0, 8.0}, 1e-12, "F1");
+    expect_vec_eq(stage.particles().get_position(0), {0.1, 0.0, 1.0}, "p0 stays");
+  }
+}
+
+// Every integrator sees the drag at each of its stages: with no spring (K = 0), no gravity and
+// no damping, a mass released at rest at p(0) is a harmonic oscillator about the target q,
+//   p(t) = q + (p(0) - q) cos(omega t),   omega = sqrt(K_d / m).
+// K_d = 100, m = 1: omega = 10; |p(0) - q| = 0.5; t = 0.1 (1000 steps of 1e-4 s). The worst
+// scheme here (explicit Euler) grows the amplitude by exp(omega^2 dt^2 n / 2) - 1 = 5e-4.
+// Without the drag (or with it at the start of the step only) the mass misses by 0.1 m or more.
+template <class Stage>
+void expect_every_integrator_oscillates_about_the_target(Stage stage, const char* name) {
+  const glm::dvec3 start = {0.1, 0.0, 0.5};
+  const glm::dvec3 q = {0.1, 0.3, 0.1};  // p(0) - q = (0, -0.3, 0.4)
+  const double omega = 10.0, dt = 1e-4;
+  const int steps = 1000;
+  for (const integrator_kind kind : all_integrators) {
+    stage.parameters.stiffness = 0.0;
+    stage.parameters.dynamics = {
+        .time_step = dt, .damping = 0.0, .mass = 1.0, .gravity = 0.0, .integrator = kind};
+    stage.parameters.drag = {.enabled = true, .mass = 1, .target = q, .stiffness = 100.0};
+    stage.load_model();
+    stage.particles().set_position(1, start);
+    stage.particles().set_velocity(1, {0.0, 0.0, 0.0});
+    for (int i = 0; i < steps; ++i)
+      stage.step();
+    const glm::dvec3 expected = q + (start - q) * std::cos(omega * dt * steps);
+    const glm::dvec3 p = stage.particles().get_position(1);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(p[c], expected[c], 2e-3)
+          << name << ", integrator " << integrator_name(kind) << ", coordinate " << c;
+    }
+  }
+}
+
+TEST(SingleSpringDrag, EveryIntegratorOscillatesAboutTheTarget) {
+  expect_every_integrator_oscillates_about_the_target(single_spring{}, "single spring");
+}
+
+TEST(CoupledSpringsDrag, EveryIntegratorOscillatesAboutTheTargetInAChainOfOne) {
+  expect_every_integrator_oscillates_about_the_target(chain_of(1), "chain of one");
+}
+
+// Needs question 5's solution (every spring on both ends). A chain of three, mass 2 dragged
+// (K_d = 100) towards q = (0.2, 0.5, 0); K = 20, L0 = 0.5, p0 = (0.1, 0, 1), s(a, b) the force of
+// the spring a-b on a (equation 2):
+//   p1 = (0.1, 0, 0.4):  s(p1, p0) = 20 (0.5 - 0.6) (0, 0, -1)         = (0, 0, 2)
+//   p2 = (0.7, 0, -0.4): s(p2, p1) = 20 (0.5 - 1) (0.6, 0, -0.8)       = (-6, 0, 8)
+//   p3 = (0.7, 0, -1.1): s(p3, p2) = 20 (0.5 - 0.7) (0, 0, -1)         = (0, 0, 4)
+//   drag on p2: 100 (q - p2) = 100 (-0.5, 0.5, 0.4)                    = (-50, 50, 40)
+//   F0 = -s(p1, p0) = (0, 0, -2)    F1 = s(p1, p0) - s(p2, p1) = (6, 0, -6)
+//   F2 = s(p2, p1) - s(p3, p2) + drag = (-56, 50, 44)                  F3 = (0, 0, 4)
+// One semi-implicit step from rest (dt = 0.01, m = 1, g0 = 9.8): v2' = 0.01 (F2 + g) =
+// (-0.56, 0.5, 0.342), p2' = p2 + 0.01 v2' = (0.6944, 0.005, -0.39658).
+TEST(SolutionCoupledSpringsDrag, ForceOnTheDraggedMassIsTheSpringsPlusKdTimesTargetMinusPosition) {
+  coupled_springs stage = chain_of(3);
+  stage.parameters.drag = {
+      .enabled = true, .mass = 2, .target = {0.2, 0.5, 0.0}, .stiffness = 100.0};
+  const glm::dvec3 positions[] = {{0.1, 0, 1}, {0.1, 0, 0.4}, {0.7, 0, -0.4}, {0.7, 0, -1.1}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    stage.particles().set_position(k, positions[k]);
+    stage.particles().set_velocity(k, {0.0, 0.0, 0.0});
+  }
+  stage.step();
+  const particle_system& particles = stage.particles();
+  expect_vec_near(particles.get_force(0), {0.0, 0.0, -2.0}, 1e-12, "F0");
+  expect_vec_near(particles.get_force(1), {6.0, 0.0, -6.0}, 1e-12, "F1");
+  expect_vec_near(particles.get_force(2), {-56.0, 50.0, 44.0}, 1e-12, "F2");
+  expect_vec_near(particles.get_force(3), {0.0, 0.0, 4.0}, 1e-12, "F3");
+  expect_vec_near(particles.get_velocity(2), {-0.56, 0.5, 0.342}, 1e-12, "v2");
+  expect_vec_near(particles.get_position(2), {0.6944, 0.005, -0.39658}, 1e-12, "p2");
+  expect_vec_eq(particles.get_position(0), {0.1, 0.0, 1.0}, "p0 is fixed");
+}
+
+// Needs question 5's solution. A drag on the chain's fixed p0 adds nothing: same chain as above
+// without the drag's (-50, 50, 40) on p2, and p0 feeling only its spring's reaction.
+TEST(SolutionCoupledSpringsDrag, TheFixedPointCannotBeDragged) {
+  coupled_springs stage = chain_of(3);
+  stage.parameters.drag = {
+      .enabled = true, .mass = 0, .target = {0.2, 0.5, 0.0}, .stiffness = 100.0};
+  const glm::dvec3 positions[] = {{0.1, 0, 1}, {0.1, 0, 0.4}, {0.7, 0, -0.4}, {0.7, 0, -1.1}};
+  for (std::size_t k = 0; k < 4; ++k)
+    stage.particles().set_position(k, positions[k]);
+  stage.compute_force();
+  expect_vec_near(stage.particles().get_force(0), {0.0, 0.0, -2.0}, 1e-12, "F0");
+  expect_vec_near(stage.particles().get_force(2), {-6.0, 0.0, 4.0}, 1e-12, "F2");
 }
 
 }  // namespace

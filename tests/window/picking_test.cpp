@@ -3,6 +3,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "coupled_springs.hpp"
 #include "picking.hpp"
 
 namespace clothlab {
@@ -42,6 +43,40 @@ TEST(Picking, ARayAwayFromTheClothGrabsNothing) {
   const spring_mesh cloth = flat_cloth();
   const pick_ray up = {{0.0, 0.0, 1.0}, {0.0, 0.0, 1.0}};  // the cloth is behind it
   EXPECT_EQ(pick_particle(cloth, up, 0.1), std::nullopt);
+}
+
+// The chain of two in its initial state: p0 = (0.1, 0, 1) (fixed), p1 = (0.1, 0, 0.5),
+// p2 = (0.1, 0, 0). Masses drawn with radius 0.085 m, p0 with 0.045 m.
+particle_system chain_of_two() {
+  return coupled_springs{}.particles();
+}
+constexpr double mass_radius = 0.085, fixed_radius = 0.045;
+
+TEST(PickingMasses, ARayThroughAMassSphereGrabsIt) {
+  const particle_system chain = chain_of_two();
+  // Along +y, 0.058 m from p1's centre (0.05 across, 0.03 up): inside its sphere.
+  const pick_ray ray = {{0.15, -5.0, 0.53}, {0.0, 1.0, 0.0}};
+  EXPECT_EQ(pick_mass(chain, ray, mass_radius, fixed_radius, 0.0), std::optional<std::size_t>(1));
+}
+
+TEST(PickingMasses, TheFirstSphereAlongTheRayWinsAndTheFixedPointIsSmaller) {
+  const particle_system chain = chain_of_two();
+  // Straight down through the chain's axis: p0's sphere comes first (the caller refuses it).
+  EXPECT_EQ(pick_mass(chain, straight_down(0.1, 0.0), mass_radius, fixed_radius, 0.0),
+            std::optional<std::size_t>(0));
+  // 0.06 m beside the axis: outside p0's sphere (0.045), inside p1's (0.085), above p2's.
+  EXPECT_EQ(pick_mass(chain, straight_down(0.16, 0.0), mass_radius, fixed_radius, 0.0),
+            std::optional<std::size_t>(1));
+}
+
+TEST(PickingMasses, APressBesideTheMassesGrabsOnlyWithinTheAngle) {
+  const particle_system chain = chain_of_two();
+  // Along +y, 0.2 m beside p1 seen from 5 m: atan(0.2 / 5) = 0.04 rad (p0 and p2: 0.107 rad).
+  const pick_ray ray = {{0.3, -5.0, 0.5}, {0.0, 1.0, 0.0}};
+  EXPECT_EQ(pick_mass(chain, ray, mass_radius, fixed_radius, 0.03), std::nullopt);
+  EXPECT_EQ(pick_mass(chain, ray, mass_radius, fixed_radius, 0.05), std::optional<std::size_t>(1));
+  const pick_ray away = {{0.1, -5.0, 0.5}, {0.0, -1.0, 0.0}};  // the chain is behind it
+  EXPECT_EQ(pick_mass(chain, away, mass_radius, fixed_radius, 0.1), std::nullopt);
 }
 
 TEST(Picking, TheTargetIsWhereTheRayMeetsTheCameraFacingPlane) {

@@ -2,7 +2,7 @@
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
 #   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel|paused_idle
-#                  |grab|grab_gpu|grab_compute|rip|orbit|sphere
+#                  |grab|grab_gpu|grab_compute|rip|orbit|sphere|grab_mass
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -70,6 +70,8 @@ elif [ "$scenario" = rip ]; then
   arguments=(--stage cloth --mass 0.1 --tear-strain 1 --drag-stiffness 2000)
 elif [ "$scenario" = sphere ]; then
   arguments=(--stage cloth --pins none --sphere 0,0,-0.6,0.3)
+elif [ "$scenario" = grab_mass ]; then
+  arguments=(--stage coupled)
 fi
 # Every run prints where the dt slider is whenever it or the run's state changes.
 CLOTHLAB_PRINT_LAYOUT=1 "$program" "${arguments[@]}" >window.log 2>&1 &
@@ -183,6 +185,24 @@ cloth_point() {
         printf "%d %d\n", 410 + 4 * x[best] + 2, 4 * y[best] + 2 }'
 }
 
+# The centre of a mass of stages 1 and 2, "X Y" in window pixels, from a screenshot: among the
+# blue pixels of the masses (the sky, the ground and the springs are not saturated blue) in the
+# scene right of the panel, looked at on a 2 x smaller copy, the one with the most blue pixels
+# within 4 pixels around it.
+mass_point() {
+  convert "$1" -crop 870x800+410+0 +repage -sample 50% txt:- |
+    awk -F'[(),: ]+' 'NR > 1 && $5 > 90 && $3 < 80 && $5 - $3 > 60 {
+        x[n] = $1; y[n] = $2; n++ }
+      END {
+        if (n == 0) exit 1
+        for (i = 0; i < n; i++) {
+          c = 0
+          for (j = 0; j < n; j++) if ((x[i] - x[j]) ^ 2 + (y[i] - y[j]) ^ 2 <= 16) c++
+          if (c > most) { most = c; best = i }
+        }
+        printf "%d %d\n", 410 + 2 * x[best] + 1, 2 * y[best] + 1 }'
+}
+
 # The three numbers of the first "(x, y, z)" after `label` in a line of the log.
 vector_after() {
   echo "$2" | sed -E "s/.*$1 \(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\).*/\1 \2 \3/"
@@ -291,6 +311,46 @@ case "$scenario" in
     [ "$(camera_at started)" = "$(camera_at ended)" ] || fail "the camera moved with the sphere"
     echo "window test: Shift + drag moved the sphere from (0, 0, -0.6) to ($centre)"
     ;;
+  grab_mass)
+    # A left drag that starts on a mass of the chain (stage 2) grabs it and pulls it up and to
+    # the right; the camera does not move. Pressed paused (the mass stays where the screenshot
+    # saw it), then the chain runs while the mouse moves, and the button is released. The drag
+    # spring (K_d = 1000 N/m) holds the mass near the target: it ends nearer to the target than
+    # a quarter of the way the target went from where it was grabbed.
+    sleep 2
+    press space
+    shot=$(screenshot_of coupled)
+    point=$(mass_point "$shot") || fail "no mass (blue) in $shot"
+    read -r x y <<<"$point"
+    timeout 10 xdotool mousemove "$x" "$y" || fail "xdotool mousemove failed"
+    sleep 0.5
+    timeout 10 xdotool mousedown 1 || fail "xdotool mousedown failed"
+    wait_for_log "grabbed mass" || fail "a press on the mass at ($x, $y) grabbed nothing"
+    timeout 10 xdotool key space || fail "xdotool key space failed"  # runs, the button held
+    for _ in $(seq 12); do
+      timeout 10 xdotool mousemove_relative -- 25 -12 || fail "xdotool mousemove_relative failed"
+      sleep 0.25
+    done
+    sleep 3
+    timeout 10 xdotool mouseup 1 || fail "xdotool mouseup failed"
+    wait_for_log "left drag ended (grab)" || fail "the drag that started on the mass did not end as a grab"
+    still_running "the grab"
+    grabbed=$(grep "grabbed mass" window.log | tail -n 1)
+    released=$(grep "released mass" window.log | tail -n 1) || fail "no 'released mass' line"
+    from=$(vector_after "at" "$grabbed")
+    to=$(vector_after "at" "$released")
+    target=$(vector_after "target" "$released")
+    read -r pulled missed <<<"$(awk -v a="$from" -v b="$to" -v q="$target" 'BEGIN {
+      split(a, p); split(b, e); split(q, t)
+      print sqrt((t[1] - p[1]) ^ 2 + (t[2] - p[2]) ^ 2 + (t[3] - p[3]) ^ 2),
+            sqrt((t[1] - e[1]) ^ 2 + (t[2] - e[2]) ^ 2 + (t[3] - e[3]) ^ 2) }')"
+    awk -v p="$pulled" -v m="$missed" 'BEGIN { exit !(p > 0.3 && m < p / 4) }' ||
+      fail "the grabbed mass did not follow the drag: target moved $pulled m, mass $missed m from it ($released)"
+    [ "$(camera_at started)" = "$(camera_at ended)" ] ||
+      fail "the camera moved during the grab: $(camera_at started) -> $(camera_at ended)"
+    echo "window test: $grabbed"
+    echo "window test: $released: the target went $pulled m, the mass ended $missed m from it; camera still at $(camera_at ended)"
+    ;;
   paused_idle)
     # Paused, the window sleeps between events instead of drawing the same frame again: under a
     # quarter of a core over 3 s (running, it takes one or two cores on llvmpipe).
@@ -376,7 +436,7 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, orbit or sphere)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, orbit, sphere or grab_mass)"
     ;;
 esac
 
