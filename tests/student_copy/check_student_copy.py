@@ -3,11 +3,11 @@
 
 1. scripts/make-student-version writes the copy into a temporary folder: no solution region, no
    marker, no teacher file survives, and README.md lists the tasks.
-2. Its ./test.sh builds it (warnings are reported as failures) and runs every test: each
-   question's tests (labels q5 ... q13) fail there, every test without a question label passes
-   (those labelled render-solution, gpu-solution, ... need the whole solution and are only
-   reported), and the run ends
-   with the table of the questions.
+2. Its ./test.sh builds it (warnings are reported as failures) and runs every test but those
+   labelled render-solution, gpu-solution, ... (they need the whole solution, and fail there by
+   design; skipped to save minutes of waiting windows): each question's tests (labels q5 ...
+   q13) fail there, every test without a question label passes, and the run ends with the
+   table of the questions.
 3. Its program runs: a headless cloth falls freely (gravity alone, no NaN), and ./run.sh without
    a display renders its tour.
 4. Restoring one question at a time (make-student-version --keep Qn into the same folder, an
@@ -88,7 +88,7 @@ def main():
         # 2. The student's ./test.sh: builds, runs everything, prints the table.
         # The fuzz test checks the command line, which is the same in both copies: a shorter
         # sample than the teacher's 300 runs says whether it passes on the stubs.
-        tested = run([dest / "test.sh"], cwd=dest, timeout=2400,
+        tested = run([dest / "test.sh", "-LE", "-solution$"], cwd=dest, timeout=2400,
                      env=dict(os.environ, CLOTHLAB_FUZZ_ITERATIONS="60"))
         output = tested.stdout + tested.stderr
         (work / "student-test.log").write_text(output)
@@ -106,7 +106,10 @@ def main():
             return 1
         labels = test_labels(build)
         outcome = junit_outcomes(results)
-        check(len(outcome) == len(labels), f"{len(labels)} tests, {len(outcome)} results")
+        solution_tests = [t for t, l in labels.items() if any(n.endswith("-solution") for n in l)]
+        ran = [t for t, status in outcome.items() if status != "notrun"]
+        check(len(ran) == len(labels) - len(solution_tests),
+              f"{len(labels) - len(solution_tests)} tests to run, {len(ran)} results")
         for q in QUESTIONS:
             tests = [t for t, l in labels.items() if q in l]
             failing = [t for t in tests if outcome.get(t) == "failed"]
@@ -118,9 +121,7 @@ def main():
             check(outcome.get(test) != "failed",
                   f"'{test}' (labels {sorted(names) or 'none'}) fails in the student copy: a "
                   "test that needs a question's solution must carry its label")
-        solution_tests = [t for t, l in labels.items() if any(n.endswith("-solution") for n in l)]
-        print(f"tests that need the whole solution: {len(solution_tests)}, failing in the copy: "
-              f"{sum(outcome.get(t) == 'failed' for t in solution_tests)}")
+        print(f"tests that need the whole solution (not run in the copy): {len(solution_tests)}")
 
         # 3. The program runs on the stubs: a free fall, finite, and the tour renders.
         csv = work / "fall.csv"
