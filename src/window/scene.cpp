@@ -442,9 +442,7 @@ void scene::release_grab() {
   }
   drag_parameters& drag = cloth_stage.parameters.drag;
   drag.enabled = false;
-  std::size_t springs = 0;  // fewer than at the start when the cloth tore
-  for (const spring_family family : all_spring_families)
-    springs += cloth_stage.springs(family).size();
+  const std::size_t springs = cloth_spring_count();  // fewer than at the start when it tore
   std::printf(
       "clothlab-window: released particle (%d, %d) at (%.3f, %.3f, %.3f), target (%.3f, %.3f, "
       "%.3f), %zu springs\n",
@@ -638,6 +636,38 @@ void scene::simulate(int steps, double wall_clock_budget) {
       seconds_since(last_readback_) >= 1.0 / max_readbacks_per_second)
     read_gpu_state();
   measure_rates(done, stepping_seconds);
+  if (stage_ == stage_kind::cloth && done > 0)
+    report_first_tear();
+}
+
+// The springs of the cloth as cloth_stage has them (on a GPU path, as of the last read-back).
+std::size_t scene::cloth_spring_count() const {
+  std::size_t springs = 0;
+  for (const spring_family family : all_spring_families)
+    springs += cloth_stage.springs(family).size();
+  return springs;
+}
+
+// The first tear of a cloth, said once until it is whole again (reset, rebuild): on the CPU path
+// at the frame it happens, on the GPU paths at the read-back that brings it.
+void scene::report_first_tear() {
+  // The springs of the whole N x N cloth (model.md): structural 2 N (N - 1), shear
+  // 2 (N - 1)^2, bending 2 N (N - 2).
+  const auto n = static_cast<std::size_t>(std::max(cloth_stage.grid_size(), 2));
+  const std::size_t whole = 2 * n * (n - 1) + 2 * (n - 1) * (n - 1) + 2 * n * (n - 2);
+  const std::size_t springs = cloth_spring_count();
+  if (springs >= whole) {
+    tear_reported_ = false;
+    return;
+  }
+  if (tear_reported_)
+    return;
+  tear_reported_ = true;
+  std::printf(
+      "clothlab-window: the cloth began to tear by step %ld (t = %.3f s): %zu of %zu "
+      "springs left\n",
+      status().step, status().time, springs, whole);
+  std::fflush(stdout);
 }
 
 // `count` steps of the cloth on its GPU path, each checked there for divergence.

@@ -230,6 +230,8 @@ class scene {
   void step_current_stage();
   void draw(int left, int width, int height);
   void measure_rates(int steps, double stepping_seconds);
+  std::size_t cloth_spring_count() const;
+  void report_first_tear();
   void restart_rate_window();
   bool cloth_on_gpu() const {
     return stage_ == stage_kind::cloth && backend_ != cloth_backend::cpu;
@@ -277,6 +279,7 @@ class scene {
   double stepping_seconds_in_rate_window_ = 0.0;
   double measured_stepping_rate_ = 0.0;
   long steps_taken_ = 0;
+  bool tear_reported_ = false;  // the cloth's first tear was said (until it is whole again)
 
   // The GPU paths (questions 11 and 12, issue 9). While backend_ is gpu (gpu_compute), gpu_
   // (gpu_compute_) holds the cloth's state; cloth_stage holds a copy read back only when the
