@@ -641,15 +641,20 @@ void gpu_cloth::read_state(spring_mesh& cloth) const {
   remove_torn_springs(mask_readback_, cloth);
 }
 
-particle_state gpu_cloth::read_particle(std::size_t k) const {
-  if (!is_loaded())
-    throw std::logic_error("gpu_cloth::read_particle called before a successful load");
-  const auto n = static_cast<std::size_t>(grid_size_);
+void check_particle_index(const char* who, int grid_size, std::size_t k) {
+  if (grid_size == 0)
+    throw std::logic_error(std::string(who) + " called before a successful load");
+  const auto n = static_cast<std::size_t>(grid_size);
   if (k >= n * n) {
-    throw std::out_of_range("gpu_cloth::read_particle: particle k=" + std::to_string(k) +
+    throw std::out_of_range(std::string(who) + ": particle k=" + std::to_string(k) +
                             " is outside the " + std::to_string(n) + " x " + std::to_string(n) +
                             " grid");
   }
+}
+
+particle_state gpu_cloth::read_particle(std::size_t k) const {
+  check_particle_index("gpu_cloth::read_particle", is_loaded() ? grid_size_ : 0, k);
+  const auto n = static_cast<std::size_t>(grid_size_);
   const int ku = static_cast<int>(k % n), kv = static_cast<int>(k / n);
   std::array<float, 4> position{}, velocity{};
   read_texel(framebuffer_[read_], GL_COLOR_ATTACHMENT0, ku, kv, position.data());

@@ -46,6 +46,9 @@ inline constexpr std::array<std::array<int, 3>, neighbour_count> neighbour_offse
 void spring_masks(const spring_mesh& cloth, std::vector<std::uint32_t>& masks);
 // Removes from the cloth the springs that the mask says are torn (both paths' read_state).
 void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& cloth);
+// Both paths' read_particle(k): throws std::logic_error before a load (grid_size 0) and
+// std::out_of_range when k is outside the N x N grid, naming `who`.
+void check_particle_index(const char* who, int grid_size, std::size_t k);
 
 // (1 + strain) L0 of the three families, the lengths beyond which their springs tear.
 std::array<float, 3> tear_lengths(double strain, const std::array<float, 3>& rest_length);

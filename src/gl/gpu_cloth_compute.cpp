@@ -220,14 +220,7 @@ void gpu_cloth_compute::read_state(spring_mesh& cloth) const {
 }
 
 particle_state gpu_cloth_compute::read_particle(std::size_t k) const {
-  if (!is_loaded())
-    throw std::logic_error("gpu_cloth_compute::read_particle called before a successful load");
-  const auto n = static_cast<std::size_t>(grid_size_);
-  if (k >= n * n) {
-    throw std::out_of_range("gpu_cloth_compute::read_particle: particle k=" + std::to_string(k) +
-                            " is outside the " + std::to_string(n) + " x " + std::to_string(n) +
-                            " grid");
-  }
+  check_particle_index("gpu_cloth_compute::read_particle", is_loaded() ? grid_size_ : 0, k);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   std::array<std::array<float, 4>, 2> texels{};  // position, velocity
   const auto offset = static_cast<GLintptr>(k * sizeof(texels[0]));
