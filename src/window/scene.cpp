@@ -337,9 +337,7 @@ std::optional<glm::dvec2> scene::framebuffer_point(const glm::dvec3& point) cons
 }
 
 mass_drag_parameters* scene::mass_drag() {
-  return stage_ == stage_kind::spring    ? &spring_stage.parameters.drag
-         : stage_ == stage_kind::coupled ? &chain_stage.parameters.drag
-                                         : nullptr;
+  return const_cast<mass_drag_parameters*>(std::as_const(*this).mass_drag());
 }
 
 const mass_drag_parameters* scene::mass_drag() const {
