@@ -229,8 +229,11 @@ press_and_pull() {  # STAGE FINDER WHAT HOLD [UNTIL]
   timeout 10 xdotool mousedown 1 || fail "xdotool mousedown failed"
   wait_for_log "grabbed $3" || fail "a press on the $3 at ($x, $y) grabbed nothing"
   timeout 10 xdotool key space || fail "xdotool key space failed"  # runs, the button held
-  for _ in $(seq 12); do
-    timeout 10 xdotool mousemove_relative -- 25 -12 || fail "xdotool mousemove_relative failed"
+  # 300 px right and 144 up, in pull_moves moves a quarter of a second apart (12 unless set).
+  local moves=${pull_moves:-12}
+  for _ in $(seq "$moves"); do
+    timeout 10 xdotool mousemove_relative -- $((300 / moves)) $((-144 / moves)) ||
+      fail "xdotool mousemove_relative failed"
     sleep 0.25
   done
   if [ -n "${5:-}" ]; then
@@ -280,9 +283,11 @@ case "$scenario" in
     grep -q "cloth: .* -> CPU" window.log && fail "the cloth left its path: $(grep 'cloth:' window.log)"
     ;;
   rip)
-    # Held until the window says the cloth tore (at most 40 s: under load the window runs far
-    # fewer steps a second, and the tear needs the cloth to follow the pull).
-    released=$(grab_and_pull 40 "the cloth began to tear")
+    # A yank: the mouse jumps 300 px at once (a slow pull can leave the cloth in a stretched
+    # equilibrium short of the strain, depending on the particle grabbed), then the button is
+    # held until the window says the cloth tore (at most 40 s: under load the window runs far
+    # fewer steps a second).
+    released=$(pull_moves=1 grab_and_pull 40 "the cloth began to tear")
     springs=$(springs_in "$released")
     [ "$springs" -lt "$whole_cloth_springs" ] ||
       fail "pulling the light cloth with tearing on tore no spring ($springs springs)"
