@@ -338,14 +338,17 @@ void spring_mesh::apply_force() {
     // The stability lab's other schemes (src/core/integrator.cpp), not a question of the lab.
     integrator_.step(d, forces(spring_sets()), particles_);
   }
-  // The contacts, in the order of docs/model.md: the sphere (an addition), the ground
-  // (question 9), self-collision (an addition), then tearing (an addition).
+}
+
+void spring_mesh::apply_constraints() {
+  // In the order of docs/model.md: the sphere (an addition), the ground (question 9),
+  // self-collision (an addition), then tearing (an addition). The pins are apply_force's: it
+  // never moves a fixed vertex.
+  const double dt = effective_parameters().dynamics.time_step;
   if (parameters.sphere.enabled)
-    apply_sphere_contact(parameters.sphere, d.time_step, particles_);
-  if (parameters.ground_enabled) {  // question 9
-    apply_ground_contact(parameters.ground_height, parameters.ground_friction, d.time_step,
-                         particles_);
-  }
+    apply_sphere_contact(parameters.sphere, dt, particles_);
+  if (parameters.ground_enabled)  // question 9
+    apply_ground_contact(parameters.ground_height, parameters.ground_friction, dt, particles_);
   if (parameters.self_collision_thickness > 0.0)
     self_collision_.apply(grid_size_, parameters.self_collision_thickness, particles_);
   if (parameters.tear_strain > 0.0)

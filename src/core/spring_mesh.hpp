@@ -37,13 +37,18 @@ class spring_mesh {
   // The same forces at any positions (flat, 3k + c), for the integrators with several stages;
   // the wind uses the normals of those positions.
   void compute_force(std::span<const double> position, std::span<double> force);
-  // Numerical integration (question 6): the handout's explicit Euler loops for the default
-  // semi-implicit integrator (the stability lab's schemes otherwise), then the ground contact
-  // (question 9).
+  // Numerical integration (question 6): the handout's explicit Euler, in its code's order
+  // (semi-implicit, the default) or its equation 6's (explicit); the stability lab's schemes
+  // otherwise. Fixed vertices never move.
   void apply_force();
+  // The constraints after the integration, in the order of docs/model.md: the sphere, the
+  // ground (question 9), self-collision, tearing (each off unless its parameter says so).
+  void apply_constraints();
+  // One step, as the lab names its parts: forces, integration, constraints.
   void step() {
     compute_force();
     apply_force();
+    apply_constraints();
   }
 
   // Recomputes normals() from the current positions. A step computes them only when the wind
