@@ -182,6 +182,27 @@ TEST_F(Q12GpuSprings, StructuralSpringsPullAStretchedTexelBack) {
                  "gathers its own springs, so the other end of every spring must add it too");
 }
 
+// Tearing (an addition of clothlab): a torn spring pulls no more, on the GPU too. The case above
+// with the spring (1, 1)-(2, 1) torn (its bit cleared in the spring mask): texel (2, 1) feels only
+// its springs to (2, 0) and (2, 2), texel (1, 1) nothing.
+TEST_F(Q12GpuSprings, ATornSpringPullsNoMore) {
+  const cloth_parameters p = still_cloth(3, 2.0, 100.0, 0.0, 0.0);
+  spring_mesh cloth(p);
+  const std::size_t a = spring_mesh::index(1, 1, 3), b = spring_mesh::index(2, 1, 3);
+  cloth.remove_springs([&](spring_family, const spring& s) {
+    return (s.a == a && s.b == b) || (s.a == b && s.b == a);
+  });
+  move(cloth, 2, 1, {1.5, 0, 0});
+  const auto force = gpu_forces(cloth, p);
+  const double side = 100.0 * (1 - std::sqrt(1.25)) / std::sqrt(1.25);
+  LAB_EXPECT_VEC(at(force, cloth, 2, 1), glm::dvec3(side, 0, 0), force_tolerance,
+                 "Q12, tearing: the structural spring (1, 1)-(2, 1) has torn: texel (2, 1) should "
+                 "feel only its springs to (2, 0) and (2, 2). joined(k, i) is false for a torn "
+                 "spring too");
+  LAB_EXPECT_VEC(at(force, cloth, 1, 1), glm::dvec3(0.0), force_tolerance,
+                 "Q12, tearing: texel (1, 1) should feel nothing from its torn spring to (2, 1)");
+}
+
 // Shear only, K = 100: the centre s(1, 1) moved to c = (0.3, 0.2, 0.4) is held by its four
 // diagonals (rest length sqrt 2); the corner s(0, 0) feels only its one diagonal, to the centre.
 TEST_F(Q12GpuSprings, ShearSpringsHoldTheDiagonals) {
