@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "lab_check.hpp"
 #include "spring_mesh.hpp"
@@ -175,6 +176,20 @@ TEST(Q8ComputeForce, SpringForcesSumToZeroAndExertNoTorque) {
   LAB_EXPECT_VEC(torque, glm::dvec3(0.0), 1e-9,
                  "Q8: the spring forces should exert no total torque (each pair lies along its "
                  "spring)");
+}
+
+// At rest, every spring at its rest length (h, h sqrt 2 or 2h): no force anywhere, corners,
+// borders and inner vertices alike (a wrong rest length shows here). 5 x 5, every family on.
+TEST(Q8ComputeForce, AClothAtRestFeelsNoSpringForce) {
+  spring_mesh cloth = cloth_with(5, 1.0, 500.0, 200.0, 50.0);
+  cloth.compute_force();
+  for (int kv = 0; kv < 5; ++kv)
+    for (int ku = 0; ku < 5; ++ku)
+      LAB_EXPECT_VEC(force_on(cloth, ku, kv), glm::dvec3(0.0), 1e-9,
+                     "Q8: on the flat cloth at rest every spring has its rest length (h for a "
+                     "structural spring, h sqrt 2 for a shear one, 2h for a bending one): s(" +
+                         std::to_string(ku) + ", " + std::to_string(kv) +
+                         ") should feel no spring force");
 }
 
 }  // namespace
