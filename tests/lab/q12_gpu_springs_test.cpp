@@ -72,7 +72,7 @@ glm::dvec3 at(const std::vector<glm::dvec3>& force, const spring_mesh& cloth, in
   return force[spring_mesh::index(ku, kv, grid(cloth))];
 }
 
-// "s(2, 1)"
+// "(2, 1)"
 std::string texel(int ku, int kv) {
   return "(" + std::to_string(ku) + ", " + std::to_string(kv) + ")";
 }
