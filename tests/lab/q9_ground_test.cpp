@@ -120,6 +120,32 @@ TEST_F(Q9GpuGround, TheGpuContactRuleMatchesTheHandComputation) {
                  "Q9 (GPU): a pinned particle is never moved, not even by the ground");
 }
 
+// With the ground off (ground_enabled false), a GPU particle goes through the plane: the 2 x 2
+// cloth of the test above, particle 0 only, one step: (0.1, 0.2, -1.5) + 0.01 (2, -4, -3).
+TEST_F(Q9GpuGround, NoGroundWhenItIsOff) {
+  cloth_parameters p;
+  p.grid_size = 2;
+  p.structural_stiffness = p.shear_stiffness = p.bending_stiffness = 0.0;
+  p.pins = pin_mode::none;
+  p.ground_enabled = false;
+  p.ground_height = -1.0;
+  p.ground_friction = 2.0;
+  p.dynamics = {.time_step = 0.01, .damping = 0.0, .mass = 1.0, .gravity = 0.0};
+  spring_mesh cloth(p);
+  cloth.particles().set_position(0, {0.1, 0.2, -1.5});
+  cloth.particles().set_velocity(0, {2, -4, -3});
+  gpu_cloth gpu;
+  std::string error;
+  ASSERT_TRUE(gpu.load(cloth, error)) << error;
+  gpu.step(p);
+  gpu.read_state(cloth);
+  LAB_EXPECT_VEC(cloth.particles().get_position(0), glm::dvec3(0.12, 0.16, -1.53), 1e-6,
+                 "Q9 (GPU): with the ground off (ground_enabled false) a particle goes through "
+                 "the plane z = -1");
+  LAB_EXPECT_VEC(cloth.particles().get_velocity(0), glm::dvec3(2, -4, -3), 1e-6,
+                 "Q9 (GPU): with the ground off a particle keeps its velocity (no friction)");
+}
+
 // The GPU cloth falls onto a ground 0.3 m below it: it reaches it and no particle is ever seen
 // under it (read back every 50 steps).
 TEST_F(Q9GpuGround, AFallingGpuClothNeverEndsAStepUnderTheGround) {

@@ -43,7 +43,8 @@ def lab_states():
     states.append(["q6", "q8"])
     return states
 TEACHER_FILES = ["docs/answers.md", "docs/teaching.md", "scripts/make-student-version",
-                 "tests/student_copy", "tests/model", "shaders/gpu_compute_step.comp"]
+                 "tests/student_copy", "tests/model", "shaders/gpu_compute_step.comp",
+                 "scripts/mutate-grader"]
 problems = []
 
 
