@@ -44,7 +44,7 @@ def lab_states():
     return states
 TEACHER_FILES = ["docs/answers.md", "docs/teaching.md", "scripts/make-student-version",
                  "tests/student_copy", "tests/model", "shaders/gpu_compute_step.comp",
-                 "scripts/mutate-grader"]
+                 "scripts/mutate-grader", "tests/mutation"]
 problems = []
 
 
