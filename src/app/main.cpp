@@ -4,51 +4,23 @@
 // GLFW and GLEW (one process cannot hold both the GLX and the OSMesa OpenGL libraries: see
 // README). The same way, --gl chooses between this program (OSMesa) and clothlab-egl (EGL),
 // built from the same sources: --gl auto takes EGL only where a hardware GPU is there.
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "gl_context.hpp"
 #include "headless.hpp"
 #include "options.hpp"
+#include "program_choice.hpp"
 
 namespace {
 
 // Replaces this process by the program `name` beside it, with the same arguments (and `extra`).
 int hand_over(const char* name, int argc, char** argv, const char* extra = nullptr) {
-  std::error_code ec;
-  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const auto program = (ec ? std::filesystem::path(".") : self.parent_path()) / name;
-  std::vector<char*> args(argv, argv + argc);
-  std::string extra_arguments = extra ? extra : "";
-  if (extra != nullptr) {
-    args.push_back(extra_arguments.data());
-  }
-  args.push_back(nullptr);
-  ::execv(program.c_str(), args.data());
-  std::fprintf(stderr, "clothlab: cannot start %s: %s\n", program.c_str(), std::strerror(errno));
-  return 1;
+  std::vector<std::string> arguments(argv, argv + argc);
+  if (extra != nullptr)
+    arguments.emplace_back(extra);
+  return clothlab::hand_over_to("clothlab", name, arguments);
 }
-
-#if !defined(CLOTHLAB_EGL_PROGRAM)
-// A GPU's device node: Linux's DRM render nodes, or NVIDIA's. Without one, EGL has only Mesa's
-// software renderer to offer, which OSMesa is too.
-bool gpu_device_node_present() {
-  std::error_code ec;
-  if (std::filesystem::exists("/dev/nvidia0", ec))
-    return true;
-  for (const auto& entry : std::filesystem::directory_iterator("/dev/dri", ec)) {
-    if (entry.path().filename().string().rfind("renderD", 0) == 0)
-      return true;
-  }
-  return false;
-}
-#endif
 
 }  // namespace
 
@@ -67,7 +39,8 @@ int main(int argc, char** argv) {
     if (o.gl == gl_choice::automatic && !clothlab::egl_hardware_device_available())
       return hand_over("clothlab", argc, argv, "--gl=osmesa");
 #else
-    if (o.gl == gl_choice::egl || (o.gl == gl_choice::automatic && gpu_device_node_present()))
+    if (o.gl == gl_choice::egl ||
+        (o.gl == gl_choice::automatic && clothlab::gpu_device_node_present()))
       return hand_over("clothlab-egl", argc, argv);
 #endif
   }
