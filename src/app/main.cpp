@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -19,8 +20,34 @@
 
 namespace {
 
+// The stop signals' handlers are the first thing installed, before the shared libraries'
+// initialisers (LLVM's, through OSMesa, take milliseconds) and before main: a signal in the
+// first milliseconds is reported like any other (docs/limits.md), not fatal. Only the dynamic
+// loader's own start, about a millisecond, comes before it.
+void install_first(int, char**, char**) {
+  clothlab::install_stop_handlers();
+}
+[[gnu::section(".preinit_array"),
+  gnu::used]] void (*const install_first_entry)(int, char**, char**) = install_first;
+
 // Replaces this process by the program `name` beside it, with the same arguments (and `extra`).
+// The stop signals are held back across the exec (a signal then waits for the new program's
+// handlers), except for the window, which handles them its own way: they get their default
+// action back.
 int hand_over(const char* name, int argc, char** argv, const char* extra = nullptr) {
+  if (const int status = clothlab::interrupted_before_the_run(); status != 0)
+    return status;
+  const bool window = std::string_view(name) == "clothlab-window";
+  if (window) {
+    for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction before {};
+      sigaction(signal_number, nullptr, &before);
+      if (before.sa_handler != SIG_IGN)
+        std::signal(signal_number, SIG_DFL);
+    }
+  } else {
+    clothlab::block_stop_signals(true);
+  }
   std::error_code ec;
   const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
   const auto program = (ec ? std::filesystem::path(".") : self.parent_path()) / name;
@@ -31,6 +58,8 @@ int hand_over(const char* name, int argc, char** argv, const char* extra = nullp
   }
   args.push_back(nullptr);
   ::execv(program.c_str(), args.data());
+  if (!window)
+    clothlab::block_stop_signals(false);
   std::fprintf(stderr, "clothlab: cannot start %s: %s\n", program.c_str(), std::strerror(errno));
   return 1;
 }

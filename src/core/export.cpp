@@ -52,7 +52,12 @@ void write_csv_header(std::FILE* out) {
 }
 
 void write_csv_step(std::FILE* out, long step, double time, const particle_system& particles) {
-  for (std::size_t k = 0; k < particles.size(); ++k) {
+  write_csv_rows(out, step, time, particles, 0, particles.size());
+}
+
+void write_csv_rows(std::FILE* out, long step, double time, const particle_system& particles,
+                    std::size_t first, std::size_t last) {
+  for (std::size_t k = first; k < last; ++k) {
     const double* p = &particles.position[3 * k];
     const double* v = &particles.velocity[3 * k];
     std::fprintf(out, "%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, time, k, p[0],
@@ -193,6 +198,11 @@ bool output_file::commit(std::string& error) {
   }
   discard();
   return ok;
+}
+
+void output_file::remove_temporary() const {
+  if (!temporary_.empty())
+    ::unlink(temporary_.c_str());
 }
 
 void output_file::discard() {

@@ -304,7 +304,7 @@ void spring_mesh::apply_force() {
                          particles_);
   }
   if (parameters.self_collision_thickness > 0.0)
-    self_collision_.apply(grid_size_, parameters.self_collision_thickness, particles_);
+    self_collision_.apply(grid_size_, self_collision_distance(parameters), particles_);
   if (parameters.tear_strain > 0.0)
     tear_springs(parameters.tear_strain);
 }

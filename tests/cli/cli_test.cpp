@@ -1082,3 +1082,114 @@ TEST_F(SolutionCli, GpuComputeRunsAndWritesItsOutputs) {
 }
 
 }  // namespace
+
+// Issue 22: the edges of every input.
+namespace {
+
+bool temporary_file_left(const fs::path& folder) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    if (entry.path().filename().string().front() == '.')
+      return true;
+  }
+  return false;
+}
+
+// An empty value is an error naming the option, whatever the option: CLI11 used to read ''
+// as 0 (--steps '' ran 0 steps, --N '' was "--N 0") and an empty path as no file at all.
+TEST_F(cli, EmptyValuesAreRefusedNamingTheOption) {
+  const std::vector<arguments> cases = {{"--steps", ""},
+                                        {"--N", ""},
+                                        {"--dt", ""},
+                                        {"--csv", ""},
+                                        {"--energy-csv", ""},
+                                        {"--obj", ""},
+                                        {"--png", ""},
+                                        {"--sweep", ""},
+                                        {"--stage", ""},
+                                        {"--wind-dir", ""},
+                                        {"--ground-z", ""},
+                                        {"--drag", ""},
+                                        {"--sphere", ""},
+                                        {"--self-collision", ""},
+                                        {"--csv-every", ""},
+                                        {"--width", ""},
+                                        {"--integrator", ""},
+                                        {"--sweep", "m.csv", "--sweep-N", ""},
+                                        {"--sweep", "m.csv", "--sweep-dt", ""}};
+  for (arguments args : cases) {
+    args.insert(args.begin(), "--headless");
+    const run_result result = run(args);
+    const std::string option = args[args.size() - 2];
+    EXPECT_EQ(result.exit_code, 2) << join(args) << "\n" << result.err;
+    EXPECT_EQ(count_lines(result.err), 1u) << join(args) << "\n" << result.err;
+    EXPECT_TRUE(result.err.find(option + " ''") != std::string::npos ||
+                result.err.find(option + ":") != std::string::npos)
+        << join(args) << "\n"
+        << result.err;
+    EXPECT_TRUE(fs::is_empty(work())) << join(args) << " wrote a file";
+  }
+}
+
+// A value with a newline (or another control character) is quoted escaped: the message stays
+// one line.
+TEST_F(cli, ValuesWithANewlineStayOnOneLine) {
+  const std::vector<arguments> cases = {{"--dt", "1\n2"},
+                                        {"--stage", "cloth\nspring"},
+                                        {"--wind-dir", "1,0,\n0"},
+                                        {"--sweep", "m.csv", "--sweep-dt", "0.01,\n0.02"},
+                                        {"--csv", "no-such-folder/a\nb.csv"},
+                                        {"--frobnicate\n", "1"}};
+  for (arguments args : cases) {
+    args.insert(args.begin(), "--headless");
+    const run_result result = run(args);
+    EXPECT_NE(result.exit_code, 0) << join(args);
+    EXPECT_EQ(count_lines(result.err), 1u) << join(args) << "\n" << result.err;
+    EXPECT_TRUE(fs::is_empty(work())) << join(args) << " wrote a file";
+  }
+}
+
+// --sweep-N 1 on the cloth (a grid of one particle) was an uncaught exception (exit 134) that
+// left the sweep's temporary file; the chain's n = 1 stays accepted.
+TEST_F(cli, SweepOfAOneParticleClothIsRefused) {
+  for (const char* list : {"1", "1,4", "1:4:3"}) {
+    const arguments args = {"--headless", "--sweep", "s.csv", "--sweep-N", list};
+    const run_result result = run(args);
+    EXPECT_EQ(result.exit_code, 2) << join(args) << "\n" << result.err;
+    EXPECT_EQ(count_lines(result.err), 1u) << result.err;
+    EXPECT_NE(result.err.find("--sweep-N 1"), std::string::npos) << result.err;
+    EXPECT_TRUE(fs::is_empty(work())) << join(args) << " wrote a file";
+  }
+  const run_result chain = run({"--headless", "--stage", "coupled", "--sweep", "s.csv", "--sweep-N",
+                                "1,2", "--sweep-dt", "0.01", "--sweep-time", "0.1"});
+  EXPECT_EQ(chain.exit_code, 0) << chain.err;
+}
+
+// A range whose ends are tiny or far apart is read like its single values: 1e-320:1:3 used to
+// be "--sweep-K inf" (to / from overflowed) while 1:1e-320:3 was accepted.
+TEST_F(cli, SweepRangesWithSubnormalEndsAreReadAlike) {
+  for (const char* range : {"1e-320:1:3", "1:1e-320:3", "0x1p-1074:1:2"}) {
+    const arguments args = {"--headless", "--stage",      "spring", "--sweep",
+                            "s.csv",      "--sweep-K",    range,    "--sweep-dt",
+                            "0.01",       "--sweep-time", "0.05"};
+    const run_result result = run(args);
+    EXPECT_EQ(result.exit_code, 0) << join(args) << "\n" << result.err;
+    const std::string text = read_file(work() / "s.csv");
+    EXPECT_EQ(text.find("inf"), std::string::npos) << text;
+    EXPECT_EQ(text.find("nan"), std::string::npos) << text;
+  }
+}
+
+// A self-collision distance above the shortest rest length h is clamped to h, with a warning.
+TEST_F(cli, SelfCollisionAboveTheRestLengthIsClampedWithAWarning) {
+  const run_result result =
+      run({"--headless", "--N", "4", "--steps", "2", "--self-collision", "1000"});
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(count_lines(result.err), 1u) << result.err;
+  EXPECT_NE(result.err.find("--self-collision 1000: clamped"), std::string::npos) << result.err;
+  const run_result below =
+      run({"--headless", "--N", "4", "--steps", "2", "--self-collision", "0.1"});
+  EXPECT_EQ(below.exit_code, 0) << below.err;
+  EXPECT_TRUE(below.err.empty()) << below.err;
+}
+
+}  // namespace
