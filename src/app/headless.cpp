@@ -42,6 +42,9 @@ constexpr int exit_diverged = 3;
 constexpr long max_sweep_steps_per_cell = 10'000'000;
 constexpr double max_sweep_steps = 1e9;            // summed over the cells
 constexpr double max_sweep_particle_steps = 1e10;  // steps times moving and fixed particles
+// A cell's set-up (its cloth built, its stability limit estimated) counts as this many steps of
+// its particles: measured 7 at N = 1024 (docs/limits.md), rounded up.
+constexpr long cell_setup_steps = 10;
 
 // SIGINT, SIGTERM, SIGHUP (issues 12 and 22): the handler only records the first signal; the
 // step loop sees it after the step in progress, writes nothing more, closes the files (whole
@@ -514,7 +517,7 @@ bool sweep_within_bounds(const options& o, const sweep_settings& settings) {
     }
     for (int n : rows) {
       steps += double(per_cell);
-      particle_steps += double(per_cell) * particles_of_row(o.stage, n);
+      particle_steps += double(per_cell + cell_setup_steps) * particles_of_row(o.stage, n);
     }
   }
   const std::size_t cells = settings.time_steps.size() * rows.size();
@@ -609,9 +612,11 @@ int run_sweep_map(const options& o) {
     worker.join();
   }
   write_sweep_csv(stream, cells);
+  errno = 0;
   stream.close();
   if (!stream) {
-    report("--sweep %s: error while writing", o.sweep_path.c_str());
+    report("--sweep %s: error while writing: %s", o.sweep_path.c_str(),
+           std::strerror(errno != 0 ? errno : EIO));
     return exit_failure;
   }
   if (!file.commit(error)) {

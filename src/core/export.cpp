@@ -161,8 +161,20 @@ bool output_file::open(const std::string& target, writer kind, std::string& erro
     return true;
   const int saved = errno;
   temporary_.clear();
-  if (exists && (saved == EACCES || saved == EPERM || saved == EROFS) && kind == writer::stream) {
-    return true;  // the folder takes no new file but the file may be writable: write directly
+  if (exists && (saved == EACCES || saved == EPERM || saved == EROFS) &&
+      ::access(target.c_str(), W_OK) == 0) {
+    // The folder takes no new file but the file is writable: the same rule for every output.
+    if (kind == writer::stream)
+      return true;  // written directly
+    // A writer that needs a file name writes into the system's temporary folder, and commit()
+    // copies the whole file into the target.
+    temporary_ = (std::filesystem::temp_directory_path() / "clothlab-XXXXXX").string();
+    copy_into_target_ = true;
+    if (create_temporary(temporary_))
+      return true;
+    temporary_.clear();
+    error = std::strerror(errno);
+    return false;
   }
   error = std::strerror(saved);
   return false;
