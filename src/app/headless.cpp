@@ -778,10 +778,17 @@ class stop_watchdog {
     const long step = stopping.last_step;
     std::string error;
     if (locked && out.close(true, false, error)) {
-      report(
-          "interrupted by %s during step %ld of %ld, which had not ended half a second "
-          "later; the CSV files hold the steps written up to step %ld",
-          signal_name(signal_number), step + 1, o.steps, step);
+      if (step == o.steps) {
+        report(
+            "interrupted by %s after the last step; the CSV files hold every step, the OBJ "
+            "and the PNG are not written",
+            signal_name(signal_number));
+      } else {
+        report(
+            "interrupted by %s during step %ld of %ld, which had not ended half a second "
+            "later; the CSV files hold the steps written up to step %ld",
+            signal_name(signal_number), step + 1, o.steps, step);
+      }
     } else {
       if (locked)
         report("%s", error.c_str());
