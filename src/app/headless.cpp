@@ -16,6 +16,7 @@
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -49,7 +50,7 @@ constexpr long cell_setup_steps = 10;
 // SIGINT, SIGTERM, SIGHUP (issues 12 and 22): the handler only records the first signal; the
 // step loop sees it after the step in progress, writes nothing more, closes the files (whole
 // lines, renamed into place) and exits with 128 + the signal's number (130, 143, 129). A step
-// that does not end within half a second of the signal is abandoned (stop_watchdog below). A
+// that does not end within stop_grace of the signal is abandoned (stop_watchdog below). A
 // second signal changes nothing: timeout(1) sends two, and the first already ends the run.
 volatile std::sig_atomic_t stop_signal = 0;
 
@@ -59,6 +60,11 @@ extern "C" void on_stop_signal(int signal_number) {
 }
 
 constexpr int stop_signals[] = {SIGINT, SIGTERM, SIGHUP};
+
+// How long after a stop signal the step in progress (or a sweep's cells) may go on before the
+// run ends without it, and how long the watchdog then waits for a write in progress: the run
+// ends within a second of the signal (docs/limits.md).
+constexpr std::chrono::milliseconds stop_grace{300};
 
 const char* signal_name(int signal_number) {
   switch (signal_number) {
@@ -590,45 +596,76 @@ int run_sweep_map(const options& o) {
     return exit_failure;
   }
 
-  // The cells run on worker threads; this one shows the progress and passes a stop signal on
-  // as the sweep's cancel flag (the cells not yet run are left out of the CSV).
-  sweep_progress progress;
-  std::vector<sweep_cell> cells;
-  std::atomic<bool> finished{false};
-  std::thread worker([&] {
-    cells = run_sweep(settings, &progress);
-    finished = true;
+  // Writes the computed cells and puts the CSV in place; 0 or exit 1 after its message.
+  const auto write_cells = [&](const std::vector<sweep_cell>& done) {
+    write_sweep_csv(stream, done);
+    errno = 0;
+    stream.close();
+    if (!stream) {
+      report("--sweep %s: error while writing: %s", o.sweep_path.c_str(),
+             std::strerror(errno != 0 ? errno : EIO));
+      return exit_failure;
+    }
+    if (!file.commit(error)) {
+      report("--sweep %s: cannot write: %s", o.sweep_path.c_str(), error.c_str());
+      return exit_failure;
+    }
+    return 0;
+  };
+  const auto interrupted = [&](const std::vector<sweep_cell>& done) {
+    const long computed = std::count_if(done.begin(), done.end(),
+                                        [](const sweep_cell& cell) { return cell.computed; });
+    if (const int status = write_cells(done); status != 0)
+      return status;
+    report("interrupted by %s after %ld of %zu sweep cells; %s holds those cells",
+           signal_name(stop_signal), computed, done.size(), o.sweep_path.c_str());
+    return 128 + stop_signal;
+  };
+
+  // The cells run on worker threads (background_sweep); this one shows the progress and
+  // watches for a stop signal. A cell of a large cloth cannot stop at once (its set-up takes a
+  // second at N = 1024, and it checks the cancel flag every 16 steps): stop_grace after the
+  // signal the cells done so far are written and the process ends, the cells in progress lost.
+  background_sweep sweep;
+  std::atomic<bool> started{false};  // the cells made (their limits estimated) and running
+  std::string refused;  // what make_sweep_cells refused (the command line refuses it first)
+  std::thread starter([&] {
+    try {
+      sweep.start(settings);
+    } catch (const std::invalid_argument& e) {
+      refused = e.what();
+    }
+    started = true;
   });
   {
     const long total = long(settings.time_steps.size()) *
                        long(std::max(settings.stiffnesses.size(), settings.grid_sizes.size()));
     progress_line line("sweep cell", total, 1);
-    while (!finished.load()) {
-      if (stop_signal != 0)
-        progress.cancel = true;
-      line.update(progress.cells_done.load());
+    std::chrono::steady_clock::time_point deadline{};
+    while (!started.load() || sweep.running()) {
+      if (stop_signal != 0 && deadline == std::chrono::steady_clock::time_point{})
+        deadline = std::chrono::steady_clock::now() + stop_grace;
+      if (stop_signal != 0 && std::chrono::steady_clock::now() > deadline) {
+        line.clear();
+        const int status =
+            interrupted(started.load() ? sweep.snapshot() : std::vector<sweep_cell>{});
+        std::fflush(stderr);
+        std::_Exit(status);  // the workers are still in their cells
+      }
+      line.update(long(std::lround(sweep.fraction_done() * double(total))));
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
-    worker.join();
+    starter.join();
   }
-  write_sweep_csv(stream, cells);
-  errno = 0;
-  stream.close();
-  if (!stream) {
-    report("--sweep %s: error while writing: %s", o.sweep_path.c_str(),
-           std::strerror(errno != 0 ? errno : EIO));
-    return exit_failure;
+  if (!refused.empty()) {
+    report("--sweep %s: %s", o.sweep_path.c_str(), refused.c_str());
+    return exit_usage;  // the temporary file is removed with `file`
   }
-  if (!file.commit(error)) {
-    report("--sweep %s: cannot write: %s", o.sweep_path.c_str(), error.c_str());
-    return exit_failure;
-  }
-  if (stop_signal != 0) {
-    report("interrupted by %s after %d of %d sweep cells; %s holds those cells",
-           signal_name(stop_signal), progress.cells_done.load(), progress.cells_total.load(),
-           o.sweep_path.c_str());
-    return 128 + stop_signal;
-  }
+  const std::vector<sweep_cell> cells = sweep.snapshot();
+  if (stop_signal != 0)
+    return interrupted(cells);
+  if (const int status = write_cells(cells); status != 0)
+    return status;
 
   // The map on standard output: one row per K (or N), one column per dt; '.' stable,
   // 'X' diverged, and '|' where dt first passes the cell's theoretical limit.
@@ -731,10 +768,10 @@ int run_stage(const options& o, run_outputs& out) {
 
 // Ends the run within a second of a stop signal whatever is in progress (issue 22): a step of
 // a large cloth (the implicit scheme at N = 1024 takes a second), a batch of GPU steps, the PNG.
-// Half a second after the signal, if the step loop has not seen it, the watchdog takes the
-// outputs (waiting at most 0.4 s more for a write in progress to let them go), puts the CSVs in
-// place with the steps written so far, removes the OBJ's and the PNG's temporary files, and
-// ends the process with 128 + the signal's number. The step in progress is lost.
+// stop_grace after the signal, if the step loop has not seen it, the watchdog takes the
+// outputs (waiting at most stop_grace more for a write in progress to let them go), puts the CSVs
+// in place with the steps written so far, removes the OBJ's and the PNG's temporary files, and ends
+// the process with 128 + the signal's number. The step in progress is lost.
 class stop_watchdog {
  public:
   stop_watchdog(const options& o, run_outputs& out)
@@ -758,12 +795,11 @@ class stop_watchdog {
   }
 
   void watch(const options& o, run_outputs& out) {
-    using namespace std::chrono_literals;
     while (stop_signal == 0 || stopping.taken) {
       if (pause())
         return;
     }
-    const auto deadline = std::chrono::steady_clock::now() + 500ms;
+    const auto deadline = std::chrono::steady_clock::now() + stop_grace;
     while (!stopping.taken && std::chrono::steady_clock::now() < deadline) {
       if (pause())
         return;
@@ -771,7 +807,7 @@ class stop_watchdog {
     if (stopping.taken)
       return;
     std::unique_lock lock(stopping.outputs, std::defer_lock);
-    const bool locked = lock.try_lock_for(400ms);
+    const bool locked = lock.try_lock_for(stop_grace);
     if (locked && stopping.taken)
       return;  // the loop got there first
     const int signal_number = stop_signal;
@@ -785,17 +821,17 @@ class stop_watchdog {
             signal_name(signal_number));
       } else {
         report(
-            "interrupted by %s during step %ld of %ld, which had not ended half a second "
-            "later; the CSV files hold the steps written up to step %ld",
-            signal_name(signal_number), step + 1, o.steps, step);
+            "interrupted by %s after step %ld of %ld (the steps after it had not ended %ld ms "
+            "later); the CSV files hold the steps written up to it",
+            signal_name(signal_number), step, o.steps, long(stop_grace.count()));
       }
     } else {
       if (locked)
         report("%s", error.c_str());
       report(
-          "interrupted by %s during step %ld of %ld; the files were being written and none "
+          "interrupted by %s after step %ld of %ld; the files were being written and none "
           "is kept",
-          signal_name(signal_number), step + 1, o.steps);
+          signal_name(signal_number), step, o.steps);
       out.discard();
     }
     std::fflush(stderr);
