@@ -35,8 +35,6 @@ void install_first(int, char**, char**) {
 // handlers), except for the window, which handles them its own way: they get their default
 // action back.
 int hand_over(const char* name, int argc, char** argv, const char* extra = nullptr) {
-  if (const int status = clothlab::interrupted_before_the_run(); status != 0)
-    return status;
   const bool window = std::string_view(name) == "clothlab-window";
   if (window) {
     for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
@@ -48,6 +46,9 @@ int hand_over(const char* name, int argc, char** argv, const char* extra = nullp
   } else {
     clothlab::block_stop_signals(true);
   }
+  // A signal that came before is reported here (after the change above, none can be lost).
+  if (const int status = clothlab::interrupted_before_the_run(); status != 0)
+    return status;
   std::error_code ec;
   const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
   const auto program = (ec ? std::filesystem::path(".") : self.parent_path()) / name;
