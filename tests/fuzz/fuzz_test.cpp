@@ -1,10 +1,12 @@
-// A bounded random driver over clothlab's command line (issue 12). Starting from seeds (the
-// reproducers D1-D9 of issue 12 and a few ordinary runs) it mutates command lines, runs the
-// clothlab executable on each in an empty folder, and checks what shared/cli.md promises:
+// A bounded random driver over clothlab's command line (issues 12 and 22). Starting from seeds
+// (the reproducers D1-D9 of issue 12, those of issue 22, and a few ordinary runs) it mutates
+// command lines (values of every kind, and empty, newline-bearing and list-shaped ones for
+// every option), runs the clothlab executable on each in an empty folder, and checks what
+// docs/cli.md and docs/limits.md promise:
 //   - the exit status is 0, 1, 2 or 3 (143 only when the driver itself sent SIGTERM after the
 //     time limit), never a crash signal;
-//   - exit 2 prints exactly one line on standard error, nothing on standard output, and writes
-//     no file;
+//   - exit 2 prints exactly one line on standard error naming an option, nothing on standard
+//     output, and writes no file; exit 1 prints a message;
 //   - every file written holds only finite numbers and whole lines, and no temporary file is
 //     left behind.
 // Environment: CLOTHLAB_FUZZ_ITERATIONS (default 300), CLOTHLAB_FUZZ_SECONDS (wall-clock budget,
