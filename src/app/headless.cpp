@@ -52,11 +52,13 @@ constexpr long cell_setup_steps = 10;
 // lines, renamed into place) and exits with 128 + the signal's number (130, 143, 129). A step
 // that does not end within stop_grace of the signal is abandoned (stop_watchdog below). A
 // second signal changes nothing: timeout(1) sends two, and the first already ends the run.
-volatile std::sig_atomic_t stop_signal = 0;
+// (A lock-free atomic: written by the handler, read by the step loop and the watchdog's thread.)
+std::atomic<int> stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 
 extern "C" void on_stop_signal(int signal_number) {
-  if (stop_signal == 0)
-    stop_signal = signal_number;
+  int none = 0;
+  stop_signal.compare_exchange_strong(none, signal_number);
 }
 
 constexpr int stop_signals[] = {SIGINT, SIGTERM, SIGHUP};
