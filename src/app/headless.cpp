@@ -815,7 +815,11 @@ class stop_watchdog {
     const int signal_number = stop_signal;
     const long step = stopping.last_step;
     std::string error;
-    if (locked && out.close(true, false, error)) {
+    if (locked && step < 0) {  // still setting up: as if the run had not started
+      out.close(false, false, error);
+      report("interrupted by %s before the run's first step was written; nothing written",
+             signal_name(signal_number));
+    } else if (locked && out.close(true, false, error)) {
       if (step == o.steps) {
         report(
             "interrupted by %s after the last step; the CSV files hold every step, the OBJ "
