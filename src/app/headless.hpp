@@ -1,5 +1,6 @@
 // The headless run of cli.md: run the chosen stage for --steps steps, write the CSV as it goes,
-// then the OBJ and the PNG. Returns the exit status (0, 1 or 3; usage errors are caught before).
+// then the OBJ and the PNG. Returns the exit status (0, 1, 3, or 128 + a stop signal; usage
+// errors are caught before, but for a sweep past its bounds: 2).
 #pragma once
 
 #include "options.hpp"
