@@ -639,8 +639,9 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     return {std::nullopt, 2};
   }
   // Self-collision runs with d no larger than the shortest rest length h (docs/model.md): a
-  // larger D is accepted, clamped, and said so once.
-  if (o.cloth.self_collision_thickness > self_collision_distance(o.cloth)) {
+  // larger D is accepted, clamped, and said so once by a headless run (the window's command
+  // line is parsed twice, by clothlab and by clothlab-window).
+  if (o.headless && o.cloth.self_collision_thickness > self_collision_distance(o.cloth)) {
     std::fprintf(stderr,
                  "clothlab: warning: --self-collision %g: clamped to the shortest rest length "
                  "h = %g m (--size / (N - 1))\n",
