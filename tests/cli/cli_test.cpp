@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -1280,8 +1281,13 @@ arguments clothlab_command(const arguments& args) {
 TEST_F(cli, SignalAtAnyMomentIsReportedOrTooLate) {
   const arguments run = {"--headless", "--N",   "20",    "--steps", "2000", "--csv-every",
                          "50",         "--csv", "s.csv", "--obj",   "s.obj"};
-  // Microseconds after the start; the run itself takes about 0.1 s of CPU.
-  const std::vector<long> delays = {0, 1000, 5000, 20000, 50000, 90000, 140000, 200000, 300000};
+  // Microseconds after the start: the first ones, then random moments up to past the end (the
+  // run itself takes about 0.1 s of CPU), from a seed that a failure names.
+  const unsigned seed = std::random_device{}();
+  std::mt19937 random(seed);
+  std::vector<long> delays = {0, 1000};
+  for (int i = 0; i < 7; ++i)
+    delays.push_back(std::uniform_int_distribution<long>(0, 300000)(random));
   // A signal sent before any code of clothlab runs (held back until then) is reported.
   {
     spawn_settings how{clothlab_command(run), work()};
@@ -1302,7 +1308,8 @@ TEST_F(cli, SignalAtAnyMomentIsReportedOrTooLate) {
     usleep(static_cast<useconds_t>(delays[trial]));
     kill(child, SIGINT);
     const ended result = wait_for(child, work());
-    const std::string what = "SIGINT " + std::to_string(delays[trial]) + " us after the start";
+    const std::string what = "SIGINT " + std::to_string(delays[trial]) +
+                             " us after the start (seed " + std::to_string(seed) + ")";
     ASSERT_TRUE(result.exited) << what << ": killed by signal " << result.code;
     EXPECT_FALSE(temporary_file_left(work())) << what;
     if (result.code == 0) {
