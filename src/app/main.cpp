@@ -2,9 +2,11 @@
 // OpenGL context when one is needed (--png, --backend gpu or gpu-compute). Without it, it hands
 // over to the interactive window, clothlab-window, built beside it from the same sources with
 // GLFW and GLEW (one process cannot hold both the GLX and the OSMesa OpenGL libraries: see
-// README). The same way, --gl chooses between this program (OSMesa) and clothlab-egl (EGL),
-// built from the same sources: --gl auto takes EGL only where a hardware GPU is there.
+// docs/architecture.md). The same way, --gl chooses between this program (OSMesa) and clothlab-egl
+// (EGL), built from the same sources: --gl auto takes EGL only where a hardware GPU is there.
+#include <csignal>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gl_context.hpp"
@@ -14,12 +16,42 @@
 
 namespace {
 
+// The stop signals' handlers are the first thing installed, before the shared libraries'
+// initialisers (LLVM's, through OSMesa, take milliseconds) and before main: a signal in the
+// first milliseconds is reported like any other (docs/limits.md), not fatal. Only the dynamic
+// loader's own start, about a millisecond, comes before it.
+void install_first(int, char**, char**) {
+  clothlab::install_stop_handlers();
+}
+[[gnu::section(".preinit_array"),
+  gnu::used]] void (*const install_first_entry)(int, char**, char**) = install_first;
+
 // Replaces this process by the program `name` beside it, with the same arguments (and `extra`).
+// The stop signals are held back across the exec (a signal then waits for the new program's
+// handlers), except for the window, which handles them its own way: they get their default
+// action back.
 int hand_over(const char* name, int argc, char** argv, const char* extra = nullptr) {
+  const bool window = std::string_view(name) == "clothlab-window";
+  if (window) {
+    for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction before {};
+      sigaction(signal_number, nullptr, &before);
+      if (before.sa_handler != SIG_IGN)
+        std::signal(signal_number, SIG_DFL);
+    }
+  } else {
+    clothlab::block_stop_signals(true);
+  }
+  // A signal that came before is reported here (after the change above, none can be lost).
+  if (const int status = clothlab::interrupted_before_the_run(); status != 0)
+    return status;
   std::vector<std::string> arguments(argv, argv + argc);
   if (extra != nullptr)
     arguments.emplace_back(extra);
-  return clothlab::hand_over_to("clothlab", name, arguments);
+  const int failed = clothlab::hand_over_to("clothlab", name, arguments);
+  if (!window)
+    clothlab::block_stop_signals(false);
+  return failed;
 }
 
 }  // namespace

@@ -346,7 +346,7 @@ void spring_mesh::apply_constraints() {
   if (parameters.ground_enabled)  // question 9
     apply_ground_contact(parameters.ground_height, parameters.ground_friction, dt, particles_);
   if (parameters.self_collision_thickness > 0.0)
-    self_collision_.apply(grid_size_, parameters.self_collision_thickness, particles_);
+    self_collision_.apply(grid_size_, self_collision_distance(parameters), particles_);
   if (parameters.tear_strain > 0.0)
     tear_springs(parameters.tear_strain);
 }
