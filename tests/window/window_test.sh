@@ -41,6 +41,10 @@ if [ "$scenario" = frames ]; then
   status=0
   "$program" --frames 0 >window.log 2>&1 || status=$?
   [ "$status" -eq 2 ] || fail "--frames 0 was accepted (exit $status, expected 2)"
+  # The refusal says the rule in a short line (it once printed the largest double, 309 digits).
+  grep -q "^clothlab: --frames: COUNT 0: must be a whole number of at least 1" window.log ||
+    fail "--frames 0's message does not say 'COUNT 0: must be a whole number of at least 1'"
+  [ "$(wc -L <window.log)" -le 120 ] || fail "--frames 0's message has a line over 120 characters"
   status=0
   timeout 120 "$program" --frames 40 >window.log 2>&1 || status=$?
   [ "$status" -eq 0 ] || fail "--frames 40 exited with status $status (expected 0)"
