@@ -195,6 +195,34 @@ void log_layout(const scene& the_scene) {
   std::fflush(stdout);
 }
 
+// CLOTHLAB_PRINT_LAYOUT=1: where a named widget (the last item) is, in window pixels from the
+// top-left corner, and whether it is whole in the panel's visible part, printed when that
+// changes (the window tests click the widget there).
+void log_widget(const char* name) {
+  static const bool asked = std::getenv("CLOTHLAB_PRINT_LAYOUT") != nullptr;
+  if (!asked)
+    return;
+  static std::vector<std::pair<std::string, std::string>> last;  // name -> its last line
+  const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
+  const ImDrawList& draw = *ImGui::GetWindowDrawList();
+  const ImVec2 clip_low = draw.GetClipRectMin(), clip_high = draw.GetClipRectMax();
+  const bool whole =
+      low.x >= clip_low.x && low.y >= clip_low.y && high.x <= clip_high.x && high.y <= clip_high.y;
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  const std::string line = format("clothlab-window: widget \"%s\" at (%.0f, %.0f), %s", name,
+                                  (low.x + high.x) / 2 * scale.x, (low.y + high.y) / 2 * scale.y,
+                                  whole ? "in sight" : "hidden or cut");
+  auto known =
+      std::find_if(last.begin(), last.end(), [&](const auto& e) { return e.first == name; });
+  if (known == last.end())
+    known = last.insert(last.end(), {name, ""});
+  if (known->second == line)
+    return;
+  known->second = line;
+  std::printf("%s\n", line.c_str());
+  std::fflush(stdout);
+}
+
 // Every slider clamps what is typed after Ctrl+click too, so that no value outside its range
 // (a zero time step, a grid of 1) can reach the simulation.
 bool slider(const char* label, double& value, double min, double max, const char* format,
@@ -696,7 +724,10 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   if (ImGui::Button("Drape over a sphere (resets)")) {
     drape_over_sphere(p);
     actions.reset = true;
+    std::printf("clothlab-window: preset Drape over a sphere\n");
+    std::fflush(stdout);
   }
+  log_widget("Drape over a sphere");
   const double low = -3.0, high = 3.0;
   ImGui::SliderScalarN("centre c (m)", ImGuiDataType_Double, &p.sphere.centre.x, 3, &low, &high,
                        "%.2f", ImGuiSliderFlags_AlwaysClamp);
@@ -705,14 +736,19 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   slider("friction mu_s (1/s)", p.sphere.friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
 
   slider("tear strain eps (0: off)", p.tear_strain, 0.0, 3.0, "%.3f");
-  ImGui::SameLine();
-  if (ImGui::Button("Rip")) {  // the label stays short: the tooltip says what it does
+  // On its own line: beside the full-width slider it was cut off by the panel's edge.
+  if (ImGui::Button("Rip (resets)")) {
     rip_preset(p);
     actions.reset = true;
+    std::printf("clothlab-window: preset Rip: m = %g kg, tear strain %g, K_d = %g N/m\n",
+                p.dynamics.mass, p.tear_strain, p.drag.stiffness);
+    std::fflush(stdout);
   }
+  log_widget("Rip");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("a 0.1 kg cloth that tears at 100 %% strain under the mouse (resets)");
-  fixed_lines("torn springs stay torn: R (reset) restores them", 1, text_style::disabled);
+    ImGui::SetTooltip("a 0.1 kg cloth that tears at 100 %% strain under the mouse");
+  ImGui::SameLine();
+  fixed_lines("torn springs stay torn: R restores them", 1, text_style::disabled);
 
   // The thickness is remembered while self-collision is off (the model's off is d = 0).
   static double thickness = 0.02;

@@ -2,7 +2,7 @@
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
 #   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel|paused_idle
-#                  |grab|grab_gpu|grab_compute|rip|orbit|sphere|grab_mass
+#                  |grab|grab_gpu|grab_compute|rip|presets|orbit|sphere|grab_mass
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -69,9 +69,10 @@ elif [ "$scenario" = grab_gpu ]; then
   arguments=(--stage cloth --backend gpu)
 elif [ "$scenario" = grab_compute ]; then
   arguments=(--stage cloth --backend gpu-compute)
-elif [ "$scenario" = rip ]; then
-  # The panel's Rip preset: a light cloth that tears at 100 % strain under a stiff drag.
-  arguments=(--stage cloth --mass 0.1 --tear-strain 1 --drag-stiffness 2000)
+elif [ "$scenario" = rip ] || [ "$scenario" = presets ]; then
+  # The panel's Rip preset (clicked below): a light cloth that tears at 100 % strain under a
+  # stiff drag.
+  arguments=(--stage cloth)
 elif [ "$scenario" = sphere ]; then
   arguments=(--stage cloth --pins none --sphere 0,0,-0.6,0.3)
 elif [ "$scenario" = grab_mass ]; then
@@ -207,6 +208,32 @@ mass_point() {
         printf "%d %d\n", 410 + 2 * x[best] + 1, 2 * y[best] + 1 }'
 }
 
+# The panel's widget NAME (a button or radio button the window names in its layout lines,
+# CLOTHLAB_PRINT_LAYOUT): scrolls the panel with the wheel until the widget is whole in sight,
+# then clicks its centre.
+click_widget() {  # NAME
+  local line x y
+  timeout 10 xdotool mousemove 200 400 || fail "xdotool mousemove failed"
+  for _ in $(seq 60); do
+    line=$(grep "^clothlab-window: widget \"$1\" at" window.log | tail -n 1)
+    case "$line" in
+      *", in sight") break ;;
+      "") ;;
+      *) timeout 10 xdotool click 5 || fail "xdotool click 5 (wheel) failed" ;;
+    esac
+    sleep 0.25
+  done
+  case "$line" in
+    *", in sight") ;;
+    *) fail "the panel's \"$1\" never came whole into sight (${line:-no layout line})" ;;
+  esac
+  read -r x y <<<"$(echo "$line" | sed -E 's/.* at \(([0-9-]+), ([0-9-]+)\).*/\1 \2/')"
+  timeout 10 xdotool mousemove "$x" "$y" || fail "xdotool mousemove failed"
+  sleep 0.3
+  timeout 10 xdotool click 1 || fail "xdotool click 1 failed"
+  echo "window test: clicked \"$1\" at ($x, $y)"
+}
+
 # The three numbers of the first "(x, y, z)" after `label` in a line of the log.
 vector_after() {
   echo "$2" | sed -E "s/.*$1 \(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\).*/\1 \2 \3/"
@@ -286,7 +313,18 @@ case "$scenario" in
       fail "springs went missing without tearing: $released"
     grep -q "cloth: .* -> CPU" window.log && fail "the cloth left its path: $(grep 'cloth:' window.log)"
     ;;
+  presets)
+    # The Rip preset's button, in the tearing section, can be scrolled to and clicked (at
+    # 1280 x 800 it was cut off beside the full-width tear strain slider).
+    click_widget Rip
+    wait_for_log "preset Rip: m = 0.1 kg, tear strain 1, K_d = 2000 N/m" ||
+      fail "a click on the Rip button did not set the preset"
+    click_widget "Drape over a sphere"
+    wait_for_log "preset Drape over a sphere" || fail "a click on Drape did not set the preset"
+    ;;
   rip)
+    click_widget Rip
+    wait_for_log "preset Rip:" || fail "a click on the Rip button did not set the preset"
     # A yank: the mouse jumps 300 px at once (a slow pull can leave the cloth in a stretched
     # equilibrium short of the strain, depending on the particle grabbed), then the button is
     # held until the window says the cloth tore (at most 40 s: under load the window runs far
@@ -441,7 +479,7 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, orbit, sphere or grab_mass)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, presets, orbit, sphere or grab_mass)"
     ;;
 esac
 
