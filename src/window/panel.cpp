@@ -184,8 +184,9 @@ void log_layout(const scene& the_scene) {
     return;
   static std::string last;
   const std::string line =
-      format("clothlab-window: layout: %s stage, %s, %s, message %s: dt slider at y = %.1f",
+      format("clothlab-window: layout: %s stage, %s, %s, %s, message %s: dt slider at y = %.1f",
              std::string(stage_name(the_scene.stage())).c_str(), run_state(the_scene),
+             the_scene.control.mode == time_mode::real_time ? "real time" : "fixed steps",
              backend_name(the_scene.backend()), the_scene.backend_message().empty() ? "no" : "yes",
              time_step_slider_y);
   if (line == last)
@@ -428,9 +429,13 @@ void edit_simulation_control(simulation_control& control, user_actions& actions)
 
   int mode = static_cast<int>(control.mode);
   ImGui::RadioButton("real time", &mode, static_cast<int>(time_mode::real_time));
+  log_widget("real time");
   ImGui::SameLine();
   ImGui::RadioButton("fixed steps per frame", &mode, static_cast<int>(time_mode::steps_per_frame));
+  log_widget("fixed steps per frame");
   control.mode = static_cast<time_mode>(mode);
+  // Both modes take the height of three sliders, so that nothing below moves at a switch.
+  const float top = ImGui::GetCursorPosY();
   if (control.mode == time_mode::real_time) {
     slider("speed (sim s/wall s)", control.real_time_speed, 0.05, 2.0, "%.2f");
     slider("max steps per frame", control.max_steps_per_frame, 1, 5000);
@@ -438,7 +443,14 @@ void edit_simulation_control(simulation_control& control, user_actions& actions)
            true);
   } else {
     slider("steps per frame", control.steps_per_frame, 1, 500);
+    fixed_lines(format("each frame advances t by %d x dt, however long the frame takes",
+                       control.steps_per_frame),
+                2, text_style::disabled);
   }
+  const float spacing = ImGui::GetStyle().ItemSpacing.y;
+  const float missing = top + 3 * ImGui::GetFrameHeightWithSpacing() - ImGui::GetCursorPosY();
+  if (missing > 0.0f)
+    ImGui::Dummy({1.0f, std::max(missing - spacing, 0.0f)});
 }
 
 // Question 4: where dt stands against the step-size limit of the stage's stiffest mode

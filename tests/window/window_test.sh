@@ -420,7 +420,14 @@ case "$scenario" in
     press g
     wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
     press n
-    check_steady_panel cloth 4
+    # The time mode: "fixed steps per frame" shows other widgets in the same height.
+    click_widget "fixed steps per frame"
+    wait_for_log "layout: cloth stage, paused, fixed steps, GPU," ||
+      fail "a click on \"fixed steps per frame\" did not change the time mode"
+    click_widget "real time"
+    wait_for_log "layout: cloth stage, paused, real time, GPU, message yes" ||
+      fail "no layout line after going back to real time"
+    check_steady_panel cloth 5
     ;;
   keys)
     press 1
