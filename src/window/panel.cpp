@@ -241,15 +241,30 @@ bool section(const char* title) {
   return ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen);
 }
 
-// Question 4: the map of stable (green) and diverged (red) runs over dt (across) and K (up)
-// around the current values (the outlined centre cell); a white dot marks the cells that the
-// theory (stability.hpp) predicts unstable.
+// The step-size limit of the current stage as it is now (stability.hpp), s.
+double current_time_step_limit(const scene& the_scene) {
+  switch (the_scene.stage()) {
+    case stage_kind::spring:
+      return estimate_stability(the_scene.spring_stage).time_step_limit;
+    case stage_kind::coupled:
+      return estimate_stability(the_scene.chain_stage).time_step_limit;
+    case stage_kind::cloth:
+      break;
+  }
+  return estimate_stability(the_scene.cloth_stage).time_step_limit;
+}
+
+// Question 4: the map of stable (green) and diverged (red) runs over dt (across, centred on the
+// theoretical limit) and K (up, around the current K); the outlined cell is the current (dt, K);
+// a white dot marks the cells that the theory (stability.hpp) predicts unstable.
 void show_stability_map(scene& the_scene) {
   stability_map& map = the_scene.stability_explorer;
   if (ImGui::Button(map.running() ? "Restart the map" : "Map dt x K around the current values")) {
     map.start(the_scene.stage(), the_scene.spring_stage.parameters,
-              the_scene.chain_stage.parameters, the_scene.cloth_stage.parameters);
+              the_scene.chain_stage.parameters, the_scene.cloth_stage.parameters,
+              current_time_step_limit(the_scene));
   }
+  log_widget("Map dt x K");
   if (map.running()) {
     ImGui::SameLine();
     if (ImGui::Button("Stop"))
@@ -310,7 +325,7 @@ void show_stability_map(scene& the_scene) {
     if (cell.time_step >= cell.time_step_limit)  // theory: unstable (limit 0: always)
       draw.AddCircleFilled({(low.x + high.x) / 2, (low.y + high.y) / 2}, 2.5f,
                            IM_COL32(255, 255, 255, 255));
-    if (column == stability_map::columns / 2 && row == stability_map::rows / 2)
+    if (column == map.current_column() && row == stability_map::rows / 2)
       draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 0.0f, 0, 2.0f);
     if (ImGui::IsMouseHoveringRect(low, high))
       hovered = &cell;
@@ -319,8 +334,9 @@ void show_stability_map(scene& the_scene) {
                 text_height * 2 + 5.0f + cell_height * stability_map::rows});
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled(
-      "dt across (x sqrt 2 per cell), K up (x 10^1/4), the outlined centre is "
-      "now; green stable, red diverged, dot: unstable in theory");
+      "dt across (x %.3g per cell, centred on the limit of the current K), K up (x 10^1/4), "
+      "the outlined cell is now; green stable, red diverged, dot: unstable in theory",
+      map.column_factor());
   ImGui::PopTextWrapPos();
   if (hovered != nullptr) {
     ImGui::BeginTooltip();
