@@ -125,6 +125,7 @@ struct streamed_buffer {
 struct frame {
   glm::mat4 view_projection;
   glm::vec3 eye;
+  float metres_per_pixel;  // at the target's distance
 };
 
 }  // namespace
@@ -408,7 +409,8 @@ frame renderer::impl::begin_frame(const camera& view, int left, int width, int h
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
-  const frame f = {view.projection(aspect) * view.view(), view.eye()};
+  const frame f = {view.projection(aspect) * view.view(), view.eye(),
+                   view.metres_per_pixel(static_cast<float>(height))};
   glDepthMask(GL_TRUE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -617,8 +619,10 @@ void renderer::impl::draw_chain(const frame& f, const particle_system& particles
   instances.clear();
   for (std::size_t k = 0; k < particles.size(); ++k) {
     const bool fixed = particles.is_fixed[k] != 0;
-    add_sphere(particles.get_position(k), fixed ? fixed_point_radius : mass_radius,
-               fixed ? fixed_point_colour : mass_colour);
+    // At least a few pixels wide, however far the view (a long chain framed whole).
+    const float radius =
+        drawn_mass_radius(fixed ? fixed_point_radius : mass_radius, f.metres_per_pixel);
+    add_sphere(particles.get_position(k), radius, fixed ? fixed_point_colour : mass_colour);
   }
   draw_spheres(f);
   draw_background(f);

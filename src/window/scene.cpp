@@ -10,8 +10,9 @@
 #include <limits>
 #include <utility>
 
+#include "framing.hpp"  // chain_view
 #include "gl.hpp"
-#include "render_geometry.hpp"  // chain_floor_height, chain_mass_radius
+#include "render_geometry.hpp"  // chain_mass_radius, drawn_mass_radius
 #include "shader.hpp"           // shader_path
 #include "stability.hpp"
 
@@ -147,12 +148,7 @@ void scene::reset() {
 camera scene::framed_view() const {
   if (stage_ != stage_kind::coupled)
     return camera::default_for(stage_);
-  const particle_system& particles = chain_stage.particles();
-  const glm::vec3 top = particles.get_position(0);
-  const coupled_springs_parameters& p = chain_stage.parameters;
-  const float bottom = chain_floor_height(top.z, chain_stage.springs(), p.dynamics.mass,
-                                          p.dynamics.gravity, p.stiffness);
-  return camera::framing(stage_, top.x, top.y, bottom, top.z + 0.2f);
+  return chain_view(chain_stage);
 }
 
 void scene::select_stage(stage_kind stage) {
@@ -367,8 +363,11 @@ bool scene::grab_particle(const pick_ray& ray, double max_angle) {
     return false;
   if (mass_drag_parameters* drag = mass_drag()) {  // stages 1 and 2: a mass
     const particle_system& particles = mass_particles();
+    // The spheres as drawn: at least a few pixels wide, however far the view.
+    const float metres_per_pixel = view.metres_per_pixel(static_cast<float>(viewport_height_));
     const std::optional<std::size_t> picked =
-        pick_mass(particles, ray, chain_mass_radius, chain_fixed_point_radius, max_angle);
+        pick_mass(particles, ray, drawn_mass_radius(chain_mass_radius, metres_per_pixel),
+                  drawn_mass_radius(chain_fixed_point_radius, metres_per_pixel), max_angle);
     if (!picked)
       return false;
     const std::string stage = std::string(stage_name(stage_));
