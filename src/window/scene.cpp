@@ -686,6 +686,7 @@ void scene::step_current_stage() {
   });
   count_step(time_step);
   report_divergence(std::move(check));
+  record_spring_motion();
 }
 
 void scene::count_step(double time_step) {
@@ -824,8 +825,6 @@ void scene::record_energy() {
   if (energy_times_.size() == frames_kept)
     energy_times_.erase(energy_times_.begin());
   energy_times_.push_back(static_cast<float>(status().time));
-  if (stage_ == stage_kind::spring)
-    spring_motion_.record(spring_stage, status().time, status().step);
 }
 
 void scene::restart_energy_history() {
@@ -833,6 +832,14 @@ void scene::restart_energy_history() {
     history.clear();
   energy_times_.clear();
   record_energy();
+  record_spring_motion();
+}
+
+// Question 2's plot: a sample of the spring after every step (spring_motion.hpp), so that its
+// curve is the simulation's, whatever the frame rate.
+void scene::record_spring_motion() {
+  if (stage_ == stage_kind::spring && !status().diverged)
+    spring_motion_.record(spring_stage, status().time, status().step);
 }
 
 void scene::restart_rate_window() {

@@ -245,6 +245,7 @@ class scene {
   void fall_back_to_cpu(const std::string& reason);
   void reload_gpu_cloth();
   void record_energy();
+  void record_spring_motion();
   void restart_energy_history();
   void load_spring_stage();
   // The mouse drag of the current stage when it is stage 1 or 2; nullptr on the cloth (whose

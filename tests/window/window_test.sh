@@ -2,7 +2,7 @@
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
 #   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel|paused_idle
-#                  |grab|grab_gpu|grab_compute|rip|presets|orbit|sphere|grab_mass
+#                  |grab|grab_gpu|grab_compute|rip|presets|spring_plot|orbit|sphere|grab_mass
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -73,6 +73,8 @@ elif [ "$scenario" = rip ] || [ "$scenario" = presets ]; then
   # The panel's Rip preset (clicked below): a light cloth that tears at 100 % strain under a
   # stiff drag.
   arguments=(--stage cloth)
+elif [ "$scenario" = spring_plot ]; then
+  arguments=(--stage spring)
 elif [ "$scenario" = sphere ]; then
   arguments=(--stage cloth --pins none --sphere 0,0,-0.6,0.3)
 elif [ "$scenario" = grab_mass ]; then
@@ -313,6 +315,22 @@ case "$scenario" in
       fail "springs went missing without tearing: $released"
     grep -q "cloth: .* -> CPU" window.log && fail "the cloth left its path: $(grep 'cloth:' window.log)"
     ;;
+  spring_plot)
+    # Question 2's x(t) plot has a sample of every step: the frames that a screenshot stalls
+    # (tens of steps at once) leave no gap wider than a step (dt = 0.01 s) in it.
+    wait_for_log "layout: spring stage, running," || fail "the spring stage never ran"
+    first=$(screenshot_of spring)
+    second=$(screenshot_of spring)
+    echo "window test: screenshots $first, $second"
+    press n  # pauses after one more step
+    timeout 10 xdotool key --clearmodifiers Escape || fail "xdotool key Escape failed"
+    wait_for_log "the x(t) plot: " || fail "no line 'the x(t) plot: ...' at exit"
+    line=$(grep "the x(t) plot: " window.log)
+    gap=$(echo "$line" | sed -E 's/.*widest gap ([0-9.]+) s$/\1/')
+    awk -v g="$gap" 'BEGIN { exit !(g < 0.0101) }' ||
+      fail "the x(t) plot joins samples $gap s apart (dt = 0.01 s): $line"
+    echo "window test: $line"
+    ;;
   presets)
     # The Rip preset's button, in the tearing section, can be scrolled to and clicked (at
     # 1280 x 800 it was cut off beside the full-width tear strain slider).
@@ -486,7 +504,7 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, presets, orbit, sphere or grab_mass)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, presets, spring_plot, orbit, sphere or grab_mass)"
     ;;
 esac
 
