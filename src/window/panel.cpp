@@ -897,6 +897,38 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
   ImGui::End();
 }
 
+// Over the scene of a stage that fell below the view: what happened and what to do. True in
+// both copies of the lab: in the student's the cloth falls freely until questions 6 to 9 are
+// written; in the teacher's, only without pins and ground (--pins none --ground-z none).
+void show_out_of_view_banner(stage_kind stage, float panel_covered_width) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos({(panel_covered_width + io.DisplaySize.x) / 2, io.DisplaySize.y * 0.4f},
+                          ImGuiCond_Always, {0.5f, 0.5f});
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav;
+  if (ImGui::Begin("out of view", nullptr, flags)) {
+    ImGui::SetWindowFontScale(1.5f);
+    ImGui::TextColored(caution_yellow, stage == stage_kind::cloth ? "The cloth fell out of view"
+                                                                  : "The masses fell out of view");
+    ImGui::SetWindowFontScale(1.0f);
+    const float width = ImGui::GetFontSize() * 30.0f;
+    if (stage == stage_kind::cloth) {
+      fixed_lines(
+          "Nothing holds it up: it falls freely under gravity. A cloth is held up by questions "
+          "6 to 9, written and switched on: apply_force (6), the pins (7), the springs (8) and "
+          "the ground (9), in spring_mesh.cpp.",
+          3, text_style::plain, {}, width);
+    } else {
+      fixed_lines("Nothing holds them up: the springs (question 5 for the chain) do.", 2,
+                  text_style::plain, {}, width);
+    }
+    ImGui::TextUnformatted("R resets the stage, V resets the view.");
+  }
+  ImGui::End();
+}
+
 }  // namespace
 
 float ui_scale() {
@@ -945,6 +977,8 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
 
   if (the_scene.status().diverged)
     show_divergence_banner(the_scene.status(), covered_width);
+  else if (the_scene.fell_out_of_view())
+    show_out_of_view_banner(the_scene.stage(), covered_width);
   log_layout(the_scene);
   return covered_width;
 }

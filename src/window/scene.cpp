@@ -729,6 +729,7 @@ void scene::draw(int left, int width, int height) {
     glClear(GL_COLOR_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);
   }
+  check_in_view();
   if (status().diverged) {
     // Nothing finite to draw: an empty scene (the renderer's background); the panel says why.
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -760,6 +761,22 @@ void scene::draw(int left, int width, int height) {
       }
       renderer_.draw(cloth_stage, view, display, width, height, left);
       break;
+  }
+}
+
+// Whether the stage fell below the view (the student's copy, before questions 6 to 9: the cloth
+// falls freely), said once in the output when it happens; the panel says it over the scene. On
+// the GPU paths, from the positions of the last read-back.
+void scene::check_in_view() {
+  const bool was_out = fell_out_of_view_;
+  const float aspect = static_cast<float>(viewport_width_) / static_cast<float>(viewport_height_);
+  fell_out_of_view_ = !status().diverged && with_current_stage([&](const auto& stage) {
+    return fell_below_view(view, aspect, stage.particles().position);
+  });
+  if (fell_out_of_view_ && !was_out) {
+    std::printf("clothlab-window: the %s stage fell out of view at t = %.2f s\n",
+                std::string(stage_name(stage_)).c_str(), status().time);
+    std::fflush(stdout);
   }
 }
 

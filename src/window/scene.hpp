@@ -117,6 +117,9 @@ class scene {
            !stability_explorer.running();
   }
   const run_status& status() const { return status_[static_cast<int>(stage_)]; }
+  // True when the current stage fell below the view at the last frame: every particle under its
+  // bottom edge (framing.hpp), e.g. a cloth that nothing holds up. The panel says what to do.
+  bool fell_out_of_view() const { return fell_out_of_view_; }
   double current_time_step() const;  // dt of the current stage, s
   // Question 4: the energies after the last frame's steps, and each of them (J) after each of
   // the last frames since the stage was selected or reset, oldest first: kinetic, gravity,
@@ -229,6 +232,7 @@ class scene {
   void simulate(int steps, double wall_clock_budget);
   void step_current_stage();
   void draw(int left, int width, int height);
+  void check_in_view();
   void measure_rates(int steps, double stepping_seconds);
   std::size_t cloth_spring_count() const;
   void report_first_tear();
@@ -281,6 +285,7 @@ class scene {
   double measured_stepping_rate_ = 0.0;
   long steps_taken_ = 0;
   bool tear_reported_ = false;  // the cloth's first tear was said (until it is whole again)
+  bool fell_out_of_view_ = false;
 
   // The GPU paths (questions 11 and 12, issue 9). While backend_ is gpu (gpu_compute), gpu_
   // (gpu_compute_) holds the cloth's state; cloth_stage holds a copy read back only when the

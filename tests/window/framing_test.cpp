@@ -7,6 +7,7 @@
 #include <glm/vec4.hpp>
 
 #include <cmath>
+#include <vector>
 
 #include "coupled_springs.hpp"
 #include "framing.hpp"
@@ -65,8 +66,35 @@ TEST(ChainView, TakesInTheWholeChainHoweverLong) {
 
 TEST(ChainView, TheDefaultChainsMassesKeepTheirSize) {
   const camera view = chain_view(coupled_springs(coupled_springs_parameters{}));
-  EXPECT_EQ(drawn_mass_radius(chain_mass_radius, view.metres_per_pixel(height)),
-            chain_mass_radius);
+  EXPECT_EQ(drawn_mass_radius(chain_mass_radius, view.metres_per_pixel(height)), chain_mass_radius);
+}
+
+// A cloth that falls freely (the student's copy before questions 6 to 9) leaves the view from
+// below; a cloth in view, or one the camera turned away from, has not fallen out of it.
+TEST(FellBelowView, AFallingClothLeavesTheViewFromBelow) {
+  const camera view = camera::default_for(stage_kind::cloth);
+  std::vector<double> cloth;  // a flat 1 m cloth at z = 0, 11 x 11 points
+  for (int kv = 0; kv <= 10; ++kv) {
+    for (int ku = 0; ku <= 10; ++ku)
+      cloth.insert(cloth.end(), {-0.5 + 0.1 * ku, -0.5 + 0.1 * kv, 0.0});
+  }
+  const float aspect = width / height;
+  EXPECT_FALSE(fell_below_view(view, aspect, cloth));
+  std::vector<double> fallen = cloth;
+  for (std::size_t i = 2; i < fallen.size(); i += 3)
+    fallen[i] -= 4.9;  // 1 s of free fall
+  EXPECT_TRUE(fell_below_view(view, aspect, fallen));
+  // Half-way out: still (partly) in view.
+  std::vector<double> half = cloth;
+  for (std::size_t i = 2; i < half.size() / 2; i += 3)
+    half[i] -= 4.9;
+  EXPECT_FALSE(fell_below_view(view, aspect, half));
+  // The camera turned away (looking the other way): out of sight, but it did not fall.
+  camera turned = view;
+  turned.orbit(3.14159f, 0.0f);
+  turned.target = view.target + 3.0f * (view.target - view.eye());
+  EXPECT_FALSE(fell_below_view(turned, aspect, cloth));
+  EXPECT_FALSE(fell_below_view(view, aspect, {}));
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
 #   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel|paused_idle
-#                  |grab|grab_gpu|grab_compute|rip|presets|spring_plot|orbit|sphere|grab_mass
+#                  |grab|grab_gpu|grab_compute|rip|presets|spring_plot|fell_out_of_view|orbit|sphere|grab_mass
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -73,6 +73,8 @@ elif [ "$scenario" = rip ] || [ "$scenario" = presets ]; then
   # The panel's Rip preset (clicked below): a light cloth that tears at 100 % strain under a
   # stiff drag.
   arguments=(--stage cloth)
+elif [ "$scenario" = fell_out_of_view ]; then
+  arguments=(--stage cloth --pins none --ground-z none)  # nothing holds the cloth up
 elif [ "$scenario" = spring_plot ]; then
   arguments=(--stage spring)
 elif [ "$scenario" = sphere ]; then
@@ -315,6 +317,26 @@ case "$scenario" in
       fail "springs went missing without tearing: $released"
     grep -q "cloth: .* -> CPU" window.log && fail "the cloth left its path: $(grep 'cloth:' window.log)"
     ;;
+  fell_out_of_view)
+    # A cloth with no pins and no ground falls out of the view within a second or two (as the
+    # student's copy does before questions 6 to 9): the window says so, over the scene.
+    wait_for_log "the cloth stage fell out of view at t = " ||
+      fail "the free-falling cloth never left the view (or the window did not say it)"
+    shot=$(screenshot_of cloth)
+    check_image "$shot" 1280 800 20
+    # The banner: a dark box over the light sky right of the panel (the sky has no dark pixel).
+    dark=$(convert "$shot" -crop 870x800+410+0 +repage -fx "r < 0.3 && g < 0.3 && b < 0.3" \
+      -format "%[fx:mean]" info:) || fail "cannot read $shot"
+    awk -v f="$dark" 'BEGIN { exit !(f > 0.02) }' ||
+      fail "$shot shows no banner over the scene (dark fraction $dark)"
+    echo "window test: the banner covers $dark of the scene"
+    press r  # back in view: the banner goes, and comes again when it falls out once more
+    for _ in $(seq 40); do
+      [ "$(grep -c "fell out of view" window.log)" -ge 2 ] && break
+      sleep 0.25
+    done
+    [ "$(grep -c "fell out of view" window.log)" -ge 2 ] || fail "after R the cloth did not fall out of view again"
+    ;;
   spring_plot)
     # Question 2's x(t) plot has a sample of every step: the frames that a screenshot stalls
     # (tens of steps at once) leave no gap wider than a step (dt = 0.01 s) in it.
@@ -504,7 +526,7 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, presets, spring_plot, orbit, sphere or grab_mass)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, presets, spring_plot, fell_out_of_view, orbit, sphere or grab_mass)"
     ;;
 esac
 
