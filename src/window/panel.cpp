@@ -919,7 +919,7 @@ void show_out_of_view_banner(stage_kind stage, float panel_covered_width) {
           "Nothing holds it up: it falls freely under gravity. A cloth is held up by questions "
           "6 to 9, written and switched on: apply_force (6), the pins (7), the springs (8) and "
           "the ground (9), in spring_mesh.cpp.",
-          3, text_style::plain, {}, width);
+          4, text_style::plain, {}, width);
     } else {
       fixed_lines("Nothing holds them up: the springs (question 5 for the chain) do.", 2,
                   text_style::plain, {}, width);
