@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -177,6 +178,7 @@ struct renderer::impl {
 
   // Scratch buffers kept between frames (no allocation per frame once grown).
   std::vector<double> normals;
+  double normals_seconds = 0.0;  // of the last draw(cloth)
   std::vector<float> floats;
   std::vector<float> instances;
   std::vector<glm::vec4> blobs;  // soft round shadows under masses: x, y (m), radius (m), darkness
@@ -784,7 +786,10 @@ void renderer::draw(const spring_mesh& cloth, const camera& view, const render_s
   // of the last step.
   const auto& position = cloth.particles().position;
   impl_->normals.resize(position.size());
+  const auto normals_start = std::chrono::steady_clock::now();
   compute_vertex_normals(cloth.grid_size(), position, impl_->normals);
+  impl_->normals_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - normals_start).count();
 
   convert_to_float(position, impl_->floats);
   glBindBuffer(GL_ARRAY_BUFFER, impl_->cloth_position_vbo);
@@ -796,6 +801,10 @@ void renderer::draw(const spring_mesh& cloth, const camera& view, const render_s
   const frame f = impl_->begin_frame(view, left, width, height);
   impl_->draw_cloth(f, cloth, settings, impl_->cpu_cloth, impl_->cloth_vao);
   glDisable(GL_SCISSOR_TEST);
+}
+
+double renderer::last_normals_seconds() const {
+  return impl_->normals_seconds;
 }
 
 void renderer::draw_from_textures(GLuint position_texture, GLuint normal_texture,

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "frame_anatomy.hpp"
 #include "plot.hpp"
 #include "stability.hpp"  // the core's: step-size limits and divergence (question 4)
 
@@ -467,6 +468,73 @@ void edit_simulation_control(simulation_control& control, user_actions& actions)
   const float missing = top + 3 * ImGui::GetFrameHeightWithSpacing() - ImGui::GetCursorPosY();
   if (missing > 0.0f)
     ImGui::Dummy({1.0f, std::max(missing - spacing, 0.0f)});
+}
+
+// Questions 1 and 3: what ran in the last frame (frame_anatomy.hpp), in the handout's scene
+// structure: load_model once; every frame draw_scene, its k steps of compute_force and
+// apply_force with the constraints, the normals, the drawing; the measured time of each and the
+// function and file that does it. Each phase is coloured by its part of question 3.
+void show_frame_anatomy(const scene& the_scene) {
+  const frame_anatomy& anatomy = the_scene.last_frame_anatomy();
+  const std::array<std::pair<const char*, ImVec4>, 4> parts = {{
+      {"initialisation", {0.55f, 0.75f, 1.0f, 1.0f}},
+      {"force computation", {1.0f, 0.7f, 0.35f, 1.0f}},
+      {"numerical integration", {0.55f, 0.9f, 0.55f, 1.0f}},
+      {"display", {0.85f, 0.7f, 1.0f, 1.0f}},
+  }};
+  const auto colour_of = [&](const std::string& part) {
+    for (const auto& [name, colour] : parts) {
+      if (part.starts_with(name))
+        return colour;
+    }
+    if (part.starts_with("constraints"))
+      return parts[2].second;
+    if (part.starts_with("forces"))  // the GPU's step: forces, integration and ground at once
+      return parts[1].second;
+    return ImGui::GetStyleColorVec4(ImGuiCol_Text);
+  };
+  fixed_lines(format("frame %ld: %s in all. The parts of question 3:", anatomy.frame,
+                     format_duration(anatomy.frame_seconds).c_str()),
+              1, text_style::disabled);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (i % 2 == 1)
+      ImGui::SameLine();
+    ImGui::TextColored(parts[i].second, i % 2 == 0 ? "  %s," : "%s", parts[i].first);
+  }
+  const ImGuiTableFlags flags =
+      ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV;
+  if (!ImGui::BeginTable("frame anatomy", 3, flags))
+    return;
+  ImGui::TableSetupColumn("phase", ImGuiTableColumnFlags_WidthFixed, 122.0f * ui_scale());
+  ImGui::TableSetupColumn("function, file", ImGuiTableColumnFlags_WidthStretch);
+  ImGui::TableSetupColumn("time", ImGuiTableColumnFlags_WidthFixed, 58.0f * ui_scale());
+  for (const anatomy_row& row : anatomy_rows(anatomy)) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    // (ImGui::Indent(0) would indent by the default spacing)
+    const float indent = static_cast<float>(row.depth) * 10.0f * ui_scale();
+    ImGui::SetCursorPosX(ImGui::GetCursorPosX() + indent);
+    ImGui::TextColored(colour_of(row.question3), "%s", row.phase.c_str());
+    if (row.phase == "compute_force")
+      log_widget("frame anatomy: compute_force");
+    if (!row.question3.empty() && ImGui::IsItemHovered())
+      ImGui::SetTooltip("question 3: %s", row.question3.c_str());
+    ImGui::TableNextColumn();
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled("%s", row.where.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::TableNextColumn();
+    if (row.seconds >= 0.0)
+      ImGui::TextUnformatted(format_duration(row.seconds).c_str());
+    else
+      ImGui::TextDisabled("-");
+  }
+  ImGui::EndTable();
+  fixed_lines(
+      "The last whole frame, timed by std::chrono around each call (scene.cpp, "
+      "window_main.cpp). The constraints run inside apply_force and are timed with it; the "
+      "GPU draws what the renderer asked at the swap.",
+      4, text_style::disabled);
 }
 
 // Question 4: where dt stands against the step-size limit of the stage's stiffest mode
@@ -951,6 +1019,10 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
       edit_stage(the_scene, actions);
       edit_simulation_control(the_scene.control, actions);
     }
+    const bool anatomy_open = ImGui::CollapsingHeader("Q1, Q3 frame anatomy: what ran, how long");
+    log_widget("frame anatomy");
+    if (anatomy_open)
+      show_frame_anatomy(the_scene);
     switch (the_scene.stage()) {
       case stage_kind::spring:
         edit_single_spring(the_scene, actions);

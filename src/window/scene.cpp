@@ -119,9 +119,16 @@ void scene::load_spring_stage() {
 }
 
 void scene::load_model() {
+  // Timed stage by stage for the frame anatomy (questions 1 and 3).
+  clock::time_point start = clock::now();
   load_spring_stage();
+  load_seconds_[static_cast<int>(stage_kind::spring)] = seconds_since(start);
+  start = clock::now();
   chain_stage.load_model();
+  load_seconds_[static_cast<int>(stage_kind::coupled)] = seconds_since(start);
+  start = clock::now();
   cloth_stage.load_model();
+  load_seconds_[static_cast<int>(stage_kind::cloth)] = seconds_since(start);
   status_ = {};
   view = framed_view();
   start_hold_seconds_left_ = control.start_hold_seconds;
@@ -132,10 +139,12 @@ void scene::load_model() {
 }
 
 void scene::reset() {
+  const clock::time_point start = clock::now();
   if (stage_ == stage_kind::spring)
     load_spring_stage();
   else
     with_current_stage([](auto& stage) { stage.load_model(); });
+  load_seconds_[static_cast<int>(stage_)] = seconds_since(start);
   if (stage_ == stage_kind::coupled)
     view = framed_view();  // the chain may have another length
   current_status() = {};
@@ -513,6 +522,12 @@ void scene::single_step() {
 // ---- Every frame: simulation, then display ----------------------------------------------
 
 void scene::draw_scene(double frame_seconds, int left, int width, int height) {
+  // The frame anatomy of this frame, filled in as its phases run.
+  anatomy_ = {.stage = stage_,
+              .on_gpu = cloth_on_gpu(),
+              .gpu_compute = cloth_on_gpu() && backend_ == cloth_backend::gpu_compute,
+              .load_seconds = load_seconds_[static_cast<int>(stage_)],
+              .frame = anatomy_.frame + 1};
   state_fresh_ = false;
   if (backend_ != cloth_backend::cpu) {
     // The integrator, tearing or self-collision can change while the cloth is on the GPU (the
@@ -626,6 +641,9 @@ void scene::simulate(int steps, double wall_clock_budget) {
   if (on_gpu)
     glFinish();
   const double stepping_seconds = seconds_since(start);
+  anatomy_.steps = done;
+  if (on_gpu)
+    anatomy_.gpu_steps_seconds = stepping_seconds;
   // The state comes back only for what the panel shows, at a bounded rate; and, while the cloth
   // can tear, for the springs overlay, whose lines are the springs of cloth_stage.
   const bool overlay_needs_state = display.show_springs && cloth_stage.parameters.tear_strain > 0.0;
@@ -679,10 +697,19 @@ int scene::run_gpu_steps(int count) {
 // a run whose speeds pass far beyond anything a stable run reaches (stability.hpp), so that
 // the explosion is caught before the numbers overflow. (The GPU paths: simulate.)
 void scene::step_current_stage() {
-  auto [time_step, check] = with_current_stage([](auto& stage) {
+  // Each phase timed for the frame anatomy (questions 1 and 3), around the student's functions.
+  auto [time_step, check] = with_current_stage([this](auto& stage) {
+    const clock::time_point start = clock::now();
     stage.compute_force();  // forces from the positions at the start of the step
-    stage.apply_force();    // integrator (and, for the cloth, the ground contact)
-    return std::pair{stage.parameters.dynamics.time_step, divergence_check(stage)};
+    const clock::time_point forces_done = clock::now();
+    stage.apply_force();  // integrator (and, for the cloth, the constraints: pins, ground)
+    const clock::time_point integrated = clock::now();
+    divergence_status found = divergence_check(stage);
+    const clock::time_point checked = clock::now();
+    anatomy_.compute_force_seconds += std::chrono::duration<double>(forces_done - start).count();
+    anatomy_.apply_force_seconds += std::chrono::duration<double>(integrated - forces_done).count();
+    anatomy_.check_seconds += std::chrono::duration<double>(checked - integrated).count();
+    return std::pair{stage.parameters.dynamics.time_step, std::move(found)};
   });
   count_step(time_step);
   report_divergence(std::move(check));
@@ -730,6 +757,24 @@ void scene::draw(int left, int width, int height) {
     glDisable(GL_SCISSOR_TEST);
   }
   check_in_view();
+  const clock::time_point draw_start = clock::now();
+  draw_stage(left, width, height);
+  anatomy_.draw_seconds = seconds_since(draw_start);
+  if (stage_ == stage_kind::cloth && backend_ == cloth_backend::cpu && !status().diverged) {
+    anatomy_.normals_seconds = renderer_.last_normals_seconds();  // (part of the drawing's time)
+    anatomy_.draw_seconds -= anatomy_.normals_seconds;
+  }
+}
+
+void scene::finish_frame_anatomy(double poll_and_panel_seconds, double panel_and_swap_seconds,
+                                 double frame_seconds) {
+  anatomy_.poll_and_panel_seconds = poll_and_panel_seconds;
+  anatomy_.panel_and_swap_seconds = panel_and_swap_seconds;
+  anatomy_.frame_seconds = frame_seconds;
+  last_anatomy_ = anatomy_;
+}
+
+void scene::draw_stage(int left, int width, int height) {
   if (status().diverged) {
     // Nothing finite to draw: an empty scene (the renderer's background); the panel says why.
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

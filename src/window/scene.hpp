@@ -16,6 +16,7 @@
 #include "camera.hpp"
 #include "coupled_springs.hpp"
 #include "energy.hpp"
+#include "frame_anatomy.hpp"
 #include "gpu_cloth.hpp"
 #include "gpu_cloth_compute.hpp"
 #include "options.hpp"
@@ -117,6 +118,12 @@ class scene {
            !stability_explorer.running();
   }
   const run_status& status() const { return status_[static_cast<int>(stage_)]; }
+  // Questions 1 and 3: what ran in the last whole frame and how long each phase took
+  // (frame_anatomy.hpp). The main loop adds its own phases with finish_frame_anatomy after the
+  // swap.
+  const frame_anatomy& last_frame_anatomy() const { return last_anatomy_; }
+  void finish_frame_anatomy(double poll_and_panel_seconds, double panel_and_swap_seconds,
+                            double frame_seconds);
   // True when the current stage fell below the view at the last frame: every particle under its
   // bottom edge (framing.hpp), e.g. a cloth that nothing holds up. The panel says what to do.
   bool fell_out_of_view() const { return fell_out_of_view_; }
@@ -232,6 +239,7 @@ class scene {
   void simulate(int steps, double wall_clock_budget);
   void step_current_stage();
   void draw(int left, int width, int height);
+  void draw_stage(int left, int width, int height);
   void check_in_view();
   void measure_rates(int steps, double stepping_seconds);
   std::size_t cloth_spring_count() const;
@@ -286,6 +294,9 @@ class scene {
   long steps_taken_ = 0;
   bool tear_reported_ = false;  // the cloth's first tear was said (until it is whole again)
   bool fell_out_of_view_ = false;
+  frame_anatomy anatomy_;                 // this frame's, being measured
+  frame_anatomy last_anatomy_;            // the last whole frame's
+  std::array<double, 3> load_seconds_{};  // the last load_model of each stage, s
 
   // The GPU paths (questions 11 and 12, issue 9). While backend_ is gpu (gpu_compute), gpu_
   // (gpu_compute_) holds the cloth's state; cloth_stage holds a copy read back only when the

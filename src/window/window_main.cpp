@@ -381,6 +381,7 @@ int main(int argc, char** argv) {
 
   while (!context->should_close()) {
     // ---- 1. Poll: window events, keys, mouse (a paused, idle window sleeps until one comes) ----
+    // (the frame anatomy's clock starts after the sleep: questions 1 and 3, frame_anatomy.hpp)
     window_input input;
     if (the_scene.idle() && frames_after_event == 0 && start.frames == 0) {
       bool woke_early = false;
@@ -399,6 +400,7 @@ int main(int argc, char** argv) {
     const double now = glfwGetTime();
     const double frame_seconds = now - previous_time;
     previous_time = now;
+    const double frame_start = now;
     user_actions actions = actions_from_keys(input.pressed_keys);
     mouse.update(context->window(), input.scroll, the_scene);
 
@@ -419,13 +421,18 @@ int main(int argc, char** argv) {
     const ImVec2 pixels_per_unit = ImGui::GetIO().DisplayFramebufferScale;  // HiDPI
     const int scene_left =
         std::min(static_cast<int>(panel_covered_width * pixels_per_unit.x), width - 1);
+    const double scene_start = glfwGetTime();
     the_scene.draw_scene(frame_seconds, scene_left, width - scene_left, height);
+    const double scene_end = glfwGetTime();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (actions.screenshot)
       save_screenshot(the_scene.stage(), width, height);
 
     // ---- 5. Swap ----
     context->swap_buffers();
+    const double frame_end = glfwGetTime();
+    the_scene.finish_frame_anatomy(scene_start - frame_start, frame_end - scene_end,
+                                   frame_end - frame_start);
     if (measured_run.frame_done(glfwGetTime(), the_scene.steps_taken()))
       break;
   }

@@ -213,8 +213,8 @@ mass_point() {
 }
 
 # The panel's widget NAME (a button or radio button the window names in its layout lines,
-# CLOTHLAB_PRINT_LAYOUT): scrolls the panel with the wheel until the widget is whole in sight,
-# then clicks its centre.
+# CLOTHLAB_PRINT_LAYOUT): scrolls the panel with the wheel (up while the widget is above the
+# panel's sections, down otherwise) until the widget is whole in sight, then clicks its centre.
 click_widget() {  # NAME
   local line x y
   timeout 10 xdotool mousemove 200 400 || fail "xdotool mousemove failed"
@@ -223,7 +223,14 @@ click_widget() {  # NAME
     case "$line" in
       *", in sight") break ;;
       "") ;;
-      *) timeout 10 xdotool click 5 || fail "xdotool click 5 (wheel) failed" ;;
+      *)
+        y=$(echo "$line" | sed -E 's/.* at \([0-9-]+, ([0-9-]+)\).*/\1/')
+        if [ "$y" -lt 200 ]; then  # above the panel's sections (behind the readouts) or the window
+          timeout 10 xdotool click 4 || fail "xdotool click 4 (wheel) failed"
+        else
+          timeout 10 xdotool click 5 || fail "xdotool click 5 (wheel) failed"
+        fi
+        ;;
     esac
     sleep 0.25
   done
@@ -361,6 +368,14 @@ case "$scenario" in
       fail "a click on the Rip button did not set the preset"
     click_widget "Drape over a sphere"
     wait_for_log "preset Drape over a sphere" || fail "a click on Drape did not set the preset"
+    # Questions 1 and 3: the frame anatomy opens and shows the steps' compute_force.
+    click_widget "frame anatomy"
+    for _ in $(seq 40); do
+      grep -q 'widget "frame anatomy: compute_force" at ([0-9]*, [0-9]*), in sight' window.log && break
+      sleep 0.25
+    done
+    grep -q 'widget "frame anatomy: compute_force" at ([0-9]*, [0-9]*), in sight' window.log ||
+      fail "the frame anatomy did not show compute_force once opened"
     ;;
   rip)
     click_widget Rip
