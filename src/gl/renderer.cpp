@@ -454,6 +454,13 @@ void renderer::impl::set_ground_uniforms(const shader_program& program, const fr
   set_uniform(program, "light_direction", light_direction);
 }
 
+// Polygon offsets (glPolygonOffset's units, the depth buffer's smallest step) of what lies on
+// the ground plane, from the nearest: the cloth's back side (a folded layer, back up, wins a tie
+// with the layer under it), its front side, the cloth's shadow, the ground (factor 2: 8).
+constexpr float back_offset_units = 1.0f;
+constexpr float front_offset_units = 4.0f;
+constexpr float shadow_offset_units = 6.0f;
+
 void renderer::impl::draw_ground(const frame& f, float height, const glm::vec2& centre) {
   set_ground_uniforms(ground_program, f, height, centre, 1.0f);
   // Pushed back in depth so that cloth lying on the ground (z = z_g exactly) stays in front.
@@ -670,11 +677,23 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
   set_uniform(surface, "shininess", 24.0f);
   set_uniform(surface, "specular_strength", 0.12f);
   // Surfaces are pushed back in depth so that lines lying on them are drawn in front.
+  // Two layers of a cloth folded flat on the ground lie at z = z_g exactly (the ground contact
+  // puts every particle below it there): their depths tie, and the rasteriser's rounding picked
+  // the layer pixel by pixel, differently from frame to frame as the cloth moved (they
+  // flickered through each other). The tie is broken the same way everywhere: the side facing
+  // away from the eye (a layer folded over, back side up) a few depth units nearer than the
+  // side facing it. The triangles are wound counter-clockwise seen from their normal's side
+  // (render_geometry.hpp), so GL's front faces are the cloth's.
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(1.0f, 1.0f);
+  glEnable(GL_CULL_FACE);
   glBindVertexArray(vao);
+  glCullFace(GL_BACK);
+  glPolygonOffset(1.0f, front_offset_units);
   draw_triangles();
-
+  glCullFace(GL_FRONT);
+  glPolygonOffset(1.0f, back_offset_units);
+  draw_triangles();
+  glDisable(GL_CULL_FACE);
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   if (show_ground) {
@@ -684,7 +703,7 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
     // on the ground) keeps it hidden.
     set_ground_uniforms(programs.shadow, f, ground_height, {0.0f, 0.0f}, light_fraction_in_shadow);
     glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(2.0f, 4.0f);  // in front of the ground, behind the cloth lying on it
+    glPolygonOffset(2.0f, shadow_offset_units);  // in front of the ground, behind the cloth
     glDepthFunc(GL_LEQUAL);
     draw_triangles();
     glDepthFunc(GL_LESS);
