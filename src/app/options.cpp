@@ -249,7 +249,16 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   };
   app.add_flag("--headless", o.headless, "Run without a window");
   app.add_option("--frames", o.frames, "Window: run COUNT frames, print the mean frame time, exit")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            // A count of frames: a whole number of at least 1 (CLI::PositiveNumber's message
+            // printed the largest double in 309 digits).
+            long count = 0;
+            const bool whole = CLI::detail::lexical_cast(text, count);
+            return whole && count >= 1 ? std::string()
+                                       : "COUNT " + text + ": must be a whole number of at least 1";
+          },
+          "COUNT >= 1"));
   app.add_option("--stage", stage, "spring | coupled | cloth (default cloth)")
       ->check(CLI::IsMember(stages));
   app.add_option("--backend", backend,

@@ -13,9 +13,11 @@ namespace {
 constexpr float max_pitch = 1.5f;     // rad: never straight above or below (lookAt needs it)
 constexpr float min_distance = 0.2f;  // m
 constexpr float max_distance = 50.0f;
-constexpr float max_framing_distance = 100.0f;  // m: a long soft chain hangs tens of metres
-constexpr float near_plane = 0.05f;             // m
-constexpr float far_plane = 200.0f;             // m
+// The near and far planes: 0.05 m and 200 m around the lab's scenes (a few metres away); for a
+// view from farther than 50 m (a long soft chain, framed whole: 50 masses at K = 20 N/m hang
+// over a kilometre), a thousandth and four times the distance.
+constexpr float near_plane = 0.05f;  // m
+constexpr float far_plane = 200.0f;  // m
 const glm::vec3 up = {0.0f, 0.0f, 1.0f};
 
 }  // namespace
@@ -55,7 +57,7 @@ camera camera::framing(stage_kind stage, float x, float y, float bottom, float t
   // Seen from the side, an extent e fills the view's height at distance (e / 2) / tan(fov / 2).
   const float needed = extent / 2.0f / 0.75f / std::tan(view.field_of_view / 2.0f);
   if (needed > view.distance) {
-    view.distance = std::min(needed, max_framing_distance);
+    view.distance = needed;
     view.target = {x, y, (top + bottom) / 2.0f};
   }
   return view;
@@ -72,7 +74,13 @@ glm::mat4 camera::view() const {
 }
 
 glm::mat4 camera::projection(float aspect) const {
-  return glm::perspective(field_of_view, aspect > 0.0f ? aspect : 1.0f, near_plane, far_plane);
+  return glm::perspective(field_of_view, aspect > 0.0f ? aspect : 1.0f,
+                          std::max(near_plane, 0.001f * distance),
+                          std::max(far_plane, 4.0f * distance));
+}
+
+float camera::metres_per_pixel(float height) const {
+  return 2.0f * distance * std::tan(field_of_view / 2.0f) / std::max(height, 1.0f);
 }
 
 void camera::orbit(float delta_yaw, float delta_pitch) {

@@ -136,6 +136,10 @@ std::vector<std::int32_t> make_grid_texels(int n) {
   return texels;
 }
 
+float drawn_mass_radius(float radius, float metres_per_pixel) {
+  return std::max(radius, min_mass_pixels * metres_per_pixel);
+}
+
 float chain_floor_height(float top_z, std::span<const spring> springs, double mass, double gravity,
                          double stiffness) {
   double rest_lengths = 0.0;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -125,6 +126,7 @@ struct streamed_buffer {
 struct frame {
   glm::mat4 view_projection;
   glm::vec3 eye;
+  float metres_per_pixel;  // at the target's distance
 };
 
 }  // namespace
@@ -176,6 +178,7 @@ struct renderer::impl {
 
   // Scratch buffers kept between frames (no allocation per frame once grown).
   std::vector<double> normals;
+  double normals_seconds = 0.0;  // of the last draw(cloth)
   std::vector<float> floats;
   std::vector<float> instances;
   std::vector<glm::vec4> blobs;  // soft round shadows under masses: x, y (m), radius (m), darkness
@@ -408,7 +411,8 @@ frame renderer::impl::begin_frame(const camera& view, int left, int width, int h
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
-  const frame f = {view.projection(aspect) * view.view(), view.eye()};
+  const frame f = {view.projection(aspect) * view.view(), view.eye(),
+                   view.metres_per_pixel(static_cast<float>(height))};
   glDepthMask(GL_TRUE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -449,6 +453,13 @@ void renderer::impl::set_ground_uniforms(const shader_program& program, const fr
   set_uniform(program, "project_onto_ground", 1);
   set_uniform(program, "light_direction", light_direction);
 }
+
+// Polygon offsets (glPolygonOffset's units, the depth buffer's smallest step) of what lies on
+// the ground plane, from the nearest: the cloth's back side (a folded layer, back up, wins a tie
+// with the layer under it), its front side, the cloth's shadow, the ground (factor 2: 8).
+constexpr float back_offset_units = 1.0f;
+constexpr float front_offset_units = 4.0f;
+constexpr float shadow_offset_units = 6.0f;
 
 void renderer::impl::draw_ground(const frame& f, float height, const glm::vec2& centre) {
   set_ground_uniforms(ground_program, f, height, centre, 1.0f);
@@ -617,8 +628,10 @@ void renderer::impl::draw_chain(const frame& f, const particle_system& particles
   instances.clear();
   for (std::size_t k = 0; k < particles.size(); ++k) {
     const bool fixed = particles.is_fixed[k] != 0;
-    add_sphere(particles.get_position(k), fixed ? fixed_point_radius : mass_radius,
-               fixed ? fixed_point_colour : mass_colour);
+    // At least a few pixels wide, however far the view (a long chain framed whole).
+    const float radius =
+        drawn_mass_radius(fixed ? fixed_point_radius : mass_radius, f.metres_per_pixel);
+    add_sphere(particles.get_position(k), radius, fixed ? fixed_point_colour : mass_colour);
   }
   draw_spheres(f);
   draw_background(f);
@@ -664,11 +677,23 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
   set_uniform(surface, "shininess", 24.0f);
   set_uniform(surface, "specular_strength", 0.12f);
   // Surfaces are pushed back in depth so that lines lying on them are drawn in front.
+  // Two layers of a cloth folded flat on the ground lie at z = z_g exactly (the ground contact
+  // puts every particle below it there): their depths tie, and the rasteriser's rounding picked
+  // the layer pixel by pixel, differently from frame to frame as the cloth moved (they
+  // flickered through each other). The tie is broken the same way everywhere: the side facing
+  // away from the eye (a layer folded over, back side up) a few depth units nearer than the
+  // side facing it. The triangles are wound counter-clockwise seen from their normal's side
+  // (render_geometry.hpp), so GL's front faces are the cloth's.
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(1.0f, 1.0f);
+  glEnable(GL_CULL_FACE);
   glBindVertexArray(vao);
+  glCullFace(GL_BACK);
+  glPolygonOffset(1.0f, front_offset_units);
   draw_triangles();
-
+  glCullFace(GL_FRONT);
+  glPolygonOffset(1.0f, back_offset_units);
+  draw_triangles();
+  glDisable(GL_CULL_FACE);
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   if (show_ground) {
@@ -678,7 +703,7 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
     // on the ground) keeps it hidden.
     set_ground_uniforms(programs.shadow, f, ground_height, {0.0f, 0.0f}, light_fraction_in_shadow);
     glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(2.0f, 4.0f);  // in front of the ground, behind the cloth lying on it
+    glPolygonOffset(2.0f, shadow_offset_units);  // in front of the ground, behind the cloth
     glDepthFunc(GL_LEQUAL);
     draw_triangles();
     glDepthFunc(GL_LESS);
@@ -780,7 +805,10 @@ void renderer::draw(const spring_mesh& cloth, const camera& view, const render_s
   // of the last step.
   const auto& position = cloth.particles().position;
   impl_->normals.resize(position.size());
+  const auto normals_start = std::chrono::steady_clock::now();
   compute_vertex_normals(cloth.grid_size(), position, impl_->normals);
+  impl_->normals_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - normals_start).count();
 
   convert_to_float(position, impl_->floats);
   glBindBuffer(GL_ARRAY_BUFFER, impl_->cloth_position_vbo);
@@ -792,6 +820,10 @@ void renderer::draw(const spring_mesh& cloth, const camera& view, const render_s
   const frame f = impl_->begin_frame(view, left, width, height);
   impl_->draw_cloth(f, cloth, settings, impl_->cpu_cloth, impl_->cloth_vao);
   glDisable(GL_SCISSOR_TEST);
+}
+
+double renderer::last_normals_seconds() const {
+  return impl_->normals_seconds;
 }
 
 void renderer::draw_from_textures(GLuint position_texture, GLuint normal_texture,

@@ -56,6 +56,10 @@ class renderer {
                           const camera& view, const render_settings& settings, int width,
                           int height, int left = 0, GLuint spring_mask_texture = 0);
 
+  // The time the last draw(cloth) took to compute the cloth's vertex normals, s (the window's
+  // frame anatomy, questions 1 and 3).
+  double last_normals_seconds() const;
+
  private:
   struct impl;
   impl* impl_;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "frame_anatomy.hpp"
 #include "plot.hpp"
 #include "stability.hpp"  // the core's: step-size limits and divergence (question 4)
 
@@ -184,13 +185,42 @@ void log_layout(const scene& the_scene) {
     return;
   static std::string last;
   const std::string line =
-      format("clothlab-window: layout: %s stage, %s, %s, message %s: dt slider at y = %.1f",
+      format("clothlab-window: layout: %s stage, %s, %s, %s, message %s: dt slider at y = %.1f",
              std::string(stage_name(the_scene.stage())).c_str(), run_state(the_scene),
+             the_scene.control.mode == time_mode::real_time ? "real time" : "fixed steps",
              backend_name(the_scene.backend()), the_scene.backend_message().empty() ? "no" : "yes",
              time_step_slider_y);
   if (line == last)
     return;
   last = line;
+  std::printf("%s\n", line.c_str());
+  std::fflush(stdout);
+}
+
+// CLOTHLAB_PRINT_LAYOUT=1: where a named widget (the last item) is, in window pixels from the
+// top-left corner, and whether it is whole in the panel's visible part, printed when that
+// changes (the window tests click the widget there).
+void log_widget(const char* name) {
+  static const bool asked = std::getenv("CLOTHLAB_PRINT_LAYOUT") != nullptr;
+  if (!asked)
+    return;
+  static std::vector<std::pair<std::string, std::string>> last;  // name -> its last line
+  const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
+  const ImDrawList& draw = *ImGui::GetWindowDrawList();
+  const ImVec2 clip_low = draw.GetClipRectMin(), clip_high = draw.GetClipRectMax();
+  const bool whole =
+      low.x >= clip_low.x && low.y >= clip_low.y && high.x <= clip_high.x && high.y <= clip_high.y;
+  const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;
+  const std::string line = format("clothlab-window: widget \"%s\" at (%.0f, %.0f), %s", name,
+                                  (low.x + high.x) / 2 * scale.x, (low.y + high.y) / 2 * scale.y,
+                                  whole ? "in sight" : "hidden or cut");
+  auto known =
+      std::find_if(last.begin(), last.end(), [&](const auto& e) { return e.first == name; });
+  if (known == last.end())
+    known = last.insert(last.end(), {name, ""});
+  if (known->second == line)
+    return;
+  known->second = line;
   std::printf("%s\n", line.c_str());
   std::fflush(stdout);
 }
@@ -212,15 +242,30 @@ bool section(const char* title) {
   return ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen);
 }
 
-// Question 4: the map of stable (green) and diverged (red) runs over dt (across) and K (up)
-// around the current values (the outlined centre cell); a white dot marks the cells that the
-// theory (stability.hpp) predicts unstable.
+// The step-size limit of the current stage as it is now (stability.hpp), s.
+double current_time_step_limit(const scene& the_scene) {
+  switch (the_scene.stage()) {
+    case stage_kind::spring:
+      return estimate_stability(the_scene.spring_stage).time_step_limit;
+    case stage_kind::coupled:
+      return estimate_stability(the_scene.chain_stage).time_step_limit;
+    case stage_kind::cloth:
+      break;
+  }
+  return estimate_stability(the_scene.cloth_stage).time_step_limit;
+}
+
+// Question 4: the map of stable (green) and diverged (red) runs over dt (across, centred on the
+// theoretical limit) and K (up, around the current K); the outlined cell is the current (dt, K);
+// a white dot marks the cells that the theory (stability.hpp) predicts unstable.
 void show_stability_map(scene& the_scene) {
   stability_map& map = the_scene.stability_explorer;
   if (ImGui::Button(map.running() ? "Restart the map" : "Map dt x K around the current values")) {
     map.start(the_scene.stage(), the_scene.spring_stage.parameters,
-              the_scene.chain_stage.parameters, the_scene.cloth_stage.parameters);
+              the_scene.chain_stage.parameters, the_scene.cloth_stage.parameters,
+              current_time_step_limit(the_scene));
   }
+  log_widget("Map dt x K");
   if (map.running()) {
     ImGui::SameLine();
     if (ImGui::Button("Stop"))
@@ -281,7 +326,7 @@ void show_stability_map(scene& the_scene) {
     if (cell.time_step >= cell.time_step_limit)  // theory: unstable (limit 0: always)
       draw.AddCircleFilled({(low.x + high.x) / 2, (low.y + high.y) / 2}, 2.5f,
                            IM_COL32(255, 255, 255, 255));
-    if (column == stability_map::columns / 2 && row == stability_map::rows / 2)
+    if (column == map.current_column() && row == stability_map::rows / 2)
       draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 0.0f, 0, 2.0f);
     if (ImGui::IsMouseHoveringRect(low, high))
       hovered = &cell;
@@ -290,8 +335,9 @@ void show_stability_map(scene& the_scene) {
                 text_height * 2 + 5.0f + cell_height * stability_map::rows});
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled(
-      "dt across (x sqrt 2 per cell), K up (x 10^1/4), the outlined centre is "
-      "now; green stable, red diverged, dot: unstable in theory");
+      "dt across (x %.3g per cell, centred on the limit of the current K), K up (x 10^1/4), "
+      "the outlined cell is now; green stable, red diverged, dot: unstable in theory",
+      map.column_factor());
   ImGui::PopTextWrapPos();
   if (hovered != nullptr) {
     ImGui::BeginTooltip();
@@ -400,9 +446,13 @@ void edit_simulation_control(simulation_control& control, user_actions& actions)
 
   int mode = static_cast<int>(control.mode);
   ImGui::RadioButton("real time", &mode, static_cast<int>(time_mode::real_time));
+  log_widget("real time");
   ImGui::SameLine();
   ImGui::RadioButton("fixed steps per frame", &mode, static_cast<int>(time_mode::steps_per_frame));
+  log_widget("fixed steps per frame");
   control.mode = static_cast<time_mode>(mode);
+  // Both modes take the height of three sliders, so that nothing below moves at a switch.
+  const float top = ImGui::GetCursorPosY();
   if (control.mode == time_mode::real_time) {
     slider("speed (sim s/wall s)", control.real_time_speed, 0.05, 2.0, "%.2f");
     slider("max steps per frame", control.max_steps_per_frame, 1, 5000);
@@ -410,7 +460,80 @@ void edit_simulation_control(simulation_control& control, user_actions& actions)
            true);
   } else {
     slider("steps per frame", control.steps_per_frame, 1, 500);
+    fixed_lines(format("each frame advances t by %d x dt, however long the frame takes",
+                       control.steps_per_frame),
+                2, text_style::disabled);
   }
+  const float spacing = ImGui::GetStyle().ItemSpacing.y;
+  const float missing = top + 3 * ImGui::GetFrameHeightWithSpacing() - ImGui::GetCursorPosY();
+  if (missing > 0.0f)
+    ImGui::Dummy({1.0f, std::max(missing - spacing, 0.0f)});
+}
+
+// Questions 1 and 3: what ran in the last frame (frame_anatomy.hpp), in the handout's scene
+// structure: load_model once; every frame draw_scene, its k steps of compute_force and
+// apply_force, apply_constraints, the normals, the drawing; the measured time of each and the
+// function and file that does it. Each phase is coloured by its part of question 3.
+void show_frame_anatomy(const scene& the_scene) {
+  const frame_anatomy& anatomy = the_scene.last_frame_anatomy();
+  const std::array<std::pair<const char*, ImVec4>, 4> parts = {{
+      {"initialisation", {0.55f, 0.75f, 1.0f, 1.0f}},
+      {"force computation", {1.0f, 0.7f, 0.35f, 1.0f}},
+      {"numerical integration", {0.55f, 0.9f, 0.55f, 1.0f}},
+      {"display", {0.85f, 0.7f, 1.0f, 1.0f}},
+  }};
+  const auto colour_of = [&](const std::string& part) {
+    for (const auto& [name, colour] : parts) {
+      if (part.starts_with(name))
+        return colour;
+    }
+    if (part.starts_with("constraints"))
+      return parts[2].second;
+    if (part.starts_with("forces"))  // the GPU's step: forces, integration and ground at once
+      return parts[1].second;
+    return ImGui::GetStyleColorVec4(ImGuiCol_Text);
+  };
+  fixed_lines(format("frame %ld: %s in all. The parts of question 3:", anatomy.frame,
+                     format_duration(anatomy.frame_seconds).c_str()),
+              1, text_style::disabled);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (i % 2 == 1)
+      ImGui::SameLine();
+    ImGui::TextColored(parts[i].second, i % 2 == 0 ? "  %s," : "%s", parts[i].first);
+  }
+  const ImGuiTableFlags flags =
+      ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV;
+  if (!ImGui::BeginTable("frame anatomy", 3, flags))
+    return;
+  ImGui::TableSetupColumn("phase", ImGuiTableColumnFlags_WidthFixed, 122.0f * ui_scale());
+  ImGui::TableSetupColumn("function, file", ImGuiTableColumnFlags_WidthStretch);
+  ImGui::TableSetupColumn("time", ImGuiTableColumnFlags_WidthFixed, 58.0f * ui_scale());
+  for (const anatomy_row& row : anatomy_rows(anatomy)) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    // (ImGui::Indent(0) would indent by the default spacing)
+    const float indent = static_cast<float>(row.depth) * 10.0f * ui_scale();
+    ImGui::SetCursorPosX(ImGui::GetCursorPosX() + indent);
+    ImGui::TextColored(colour_of(row.question3), "%s", row.phase.c_str());
+    if (row.phase == "compute_force")
+      log_widget("frame anatomy: compute_force");
+    if (!row.question3.empty() && ImGui::IsItemHovered())
+      ImGui::SetTooltip("question 3: %s", row.question3.c_str());
+    ImGui::TableNextColumn();
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextDisabled("%s", row.where.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::TableNextColumn();
+    if (row.seconds >= 0.0)
+      ImGui::TextUnformatted(format_duration(row.seconds).c_str());
+    else
+      ImGui::TextDisabled("-");
+  }
+  ImGui::EndTable();
+  fixed_lines(
+      "The last whole frame, timed by std::chrono around each call (scene.cpp, "
+      "window_main.cpp). The GPU draws what the renderer asked at the swap.",
+      4, text_style::disabled);
 }
 
 // Question 4: where dt stands against the step-size limit of the stage's stiffest mode
@@ -696,7 +819,10 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   if (ImGui::Button("Drape over a sphere (resets)")) {
     drape_over_sphere(p);
     actions.reset = true;
+    std::printf("clothlab-window: preset Drape over a sphere\n");
+    std::fflush(stdout);
   }
+  log_widget("Drape over a sphere");
   const double low = -3.0, high = 3.0;
   ImGui::SliderScalarN("centre c (m)", ImGuiDataType_Double, &p.sphere.centre.x, 3, &low, &high,
                        "%.2f", ImGuiSliderFlags_AlwaysClamp);
@@ -705,14 +831,19 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   slider("friction mu_s (1/s)", p.sphere.friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
 
   slider("tear strain eps (0: off)", p.tear_strain, 0.0, 3.0, "%.3f");
-  ImGui::SameLine();
-  if (ImGui::Button("Rip")) {  // the label stays short: the tooltip says what it does
+  // On its own line: beside the full-width slider it was cut off by the panel's edge.
+  if (ImGui::Button("Rip (resets)")) {
     rip_preset(p);
     actions.reset = true;
+    std::printf("clothlab-window: preset Rip: m = %g kg, tear strain %g, K_d = %g N/m\n",
+                p.dynamics.mass, p.tear_strain, p.drag.stiffness);
+    std::fflush(stdout);
   }
+  log_widget("Rip");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("a 0.1 kg cloth that tears at 100 %% strain under the mouse (resets)");
-  fixed_lines("torn springs stay torn: R (reset) restores them", 1, text_style::disabled);
+    ImGui::SetTooltip("a 0.1 kg cloth that tears at 100 %% strain under the mouse");
+  ImGui::SameLine();
+  fixed_lines("torn springs stay torn: R restores them", 1, text_style::disabled);
 
   // The thickness is remembered while self-collision is off (the model's off is d = 0).
   static double thickness = 0.02;
@@ -833,6 +964,38 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
   ImGui::End();
 }
 
+// Over the scene of a stage that fell below the view: what happened and what to do. True in
+// both copies of the lab: in the student's the cloth falls freely until questions 6 to 9 are
+// written; in the teacher's, only without pins and ground (--pins none --ground-z none).
+void show_out_of_view_banner(stage_kind stage, float panel_covered_width) {
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos({(panel_covered_width + io.DisplaySize.x) / 2, io.DisplaySize.y * 0.4f},
+                          ImGuiCond_Always, {0.5f, 0.5f});
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav;
+  if (ImGui::Begin("out of view", nullptr, flags)) {
+    ImGui::SetWindowFontScale(1.5f);
+    ImGui::TextColored(caution_yellow, stage == stage_kind::cloth ? "The cloth fell out of view"
+                                                                  : "The masses fell out of view");
+    ImGui::SetWindowFontScale(1.0f);
+    const float width = ImGui::GetFontSize() * 30.0f;
+    if (stage == stage_kind::cloth) {
+      fixed_lines(
+          "Nothing holds it up: it falls freely under gravity. A cloth is held up by questions "
+          "6 to 9, written and switched on: apply_force (6), the pins (7), the springs (8) and "
+          "the ground (9), in spring_mesh.cpp.",
+          4, text_style::plain, {}, width);
+    } else {
+      fixed_lines("Nothing holds them up: the springs (question 5 for the chain) do.", 2,
+                  text_style::plain, {}, width);
+    }
+    ImGui::TextUnformatted("R resets the stage, V resets the view.");
+  }
+  ImGui::End();
+}
+
 }  // namespace
 
 float ui_scale() {
@@ -855,6 +1018,10 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
       edit_stage(the_scene, actions);
       edit_simulation_control(the_scene.control, actions);
     }
+    const bool anatomy_open = ImGui::CollapsingHeader("Q1, Q3 frame anatomy: what ran, how long");
+    log_widget("frame anatomy");
+    if (anatomy_open)
+      show_frame_anatomy(the_scene);
     switch (the_scene.stage()) {
       case stage_kind::spring:
         edit_single_spring(the_scene, actions);
@@ -881,6 +1048,8 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
 
   if (the_scene.status().diverged)
     show_divergence_banner(the_scene.status(), covered_width);
+  else if (the_scene.fell_out_of_view())
+    show_out_of_view_banner(the_scene.stage(), covered_width);
   log_layout(the_scene);
   return covered_width;
 }

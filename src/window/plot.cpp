@@ -7,31 +7,6 @@
 
 namespace clothlab {
 
-std::vector<double> nice_ticks(double low, double high, int count) {
-  std::vector<double> ticks;
-  if (!(high > low) || !std::isfinite(low) || !std::isfinite(high) || count < 1)
-    return ticks;
-  const double raw = (high - low) / count;
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  double step = power;
-  for (const double factor : {1.0, 2.0, 5.0, 10.0}) {
-    step = factor * power;
-    if (step >= raw)
-      break;
-  }
-  for (double tick = std::ceil(low / step) * step; tick <= high + 1e-9 * step; tick += step)
-    ticks.push_back(std::abs(tick) < 1e-9 * step ? 0.0 : tick);
-  if (ticks.size() < 2 && count < 64)  // a lone tick gives no scale: a finer step
-    return nice_ticks(low, high, 2 * count);
-  return ticks;
-}
-
-std::string tick_label(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
-
 void line_plot(const char* id, std::span<const plot_series> series, const plot_style& style) {
   ImGui::PushID(id);
   const ImVec2 origin = ImGui::GetCursorScreenPos();
@@ -78,11 +53,12 @@ void line_plot(const char* id, std::span<const plot_series> series, const plot_s
 
   const int y_tick_count = std::max(3, static_cast<int>(style.height / (1.7f * text_height)));
   const std::vector<double> y_ticks = nice_ticks(y_low, y_high, y_tick_count);
+  const std::vector<std::string> y_labels = tick_labels(y_ticks);  // as precise as the spacing
   float label_width = style.min_label_width;
   if (style.x_numbers)  // the x unit goes under the y numbers
     label_width = std::max(label_width, ImGui::CalcTextSize(style.x_unit).x);
-  for (const double tick : y_ticks)
-    label_width = std::max(label_width, ImGui::CalcTextSize(tick_label(tick).c_str()).x);
+  for (const std::string& label : y_labels)
+    label_width = std::max(label_width, ImGui::CalcTextSize(label.c_str()).x);
   const ImVec2 low = {origin.x + label_width + 6.0f, origin.y + 1.0f};
   const ImVec2 high = {origin.x + width - 1.0f,
                        origin.y + style.height - (style.x_numbers ? text_height + 3.0f : 2.0f)};
@@ -92,22 +68,24 @@ void line_plot(const char* id, std::span<const plot_series> series, const plot_s
   };
 
   draw.AddRectFilled(low, high, IM_COL32(30, 34, 44, 255));
-  for (const double tick : y_ticks) {
-    const float y = to_screen(x_low, tick).y;
+  for (std::size_t i = 0; i < y_ticks.size(); ++i) {
+    const float y = to_screen(x_low, y_ticks[i]).y;
     draw.AddLine({low.x, y}, {high.x, y}, IM_COL32(60, 64, 76, 255));
     draw.AddLine({low.x - 3.0f, y}, {low.x, y}, frame_colour);
-    const std::string label = tick_label(tick);
+    const std::string& label = y_labels[i];
     draw.AddText({low.x - 5.0f - ImGui::CalcTextSize(label.c_str()).x, y - text_height / 2},
                  text_colour, label.c_str());
   }
   const int x_tick_count =
       std::max(1, static_cast<int>((high.x - low.x) / (5.5f * ImGui::GetFontSize())));
-  for (const double tick : nice_ticks(x_low, x_high, x_tick_count)) {
-    const float x = to_screen(tick, y_low).x;
+  const std::vector<double> x_ticks = nice_ticks(x_low, x_high, x_tick_count);
+  const std::vector<std::string> x_labels = tick_labels(x_ticks);
+  for (std::size_t i = 0; i < x_ticks.size(); ++i) {
+    const float x = to_screen(x_ticks[i], y_low).x;
     draw.AddLine({x, low.y}, {x, high.y}, IM_COL32(60, 64, 76, 255));
     draw.AddLine({x, high.y}, {x, high.y + 3.0f}, frame_colour);
     if (style.x_numbers) {
-      const std::string label = tick_label(tick);
+      const std::string& label = x_labels[i];
       const float half = ImGui::CalcTextSize(label.c_str()).x / 2;
       draw.AddText({std::clamp(x - half, low.x, high.x - 2 * half), high.y + 2.0f}, text_colour,
                    label.c_str());

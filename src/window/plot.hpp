@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "ticks.hpp"  // nice_ticks, tick_labels
+
 namespace clothlab {
 
 struct plot_series {
@@ -27,11 +29,6 @@ struct plot_style {
   float min_label_width = 0.0f;  // of the y numbers' column: plots stacked over one x axis align
   std::string title;             // in the top-right corner of the frame, e.g. "total 4.99 J"
 };
-
-// The round tick values in [low, high], about `count` of them.
-std::vector<double> nice_ticks(double low, double high, int count);
-// A tick's number, short: "0.05", "2e+03", "-1.5".
-std::string tick_label(double value);
 
 // Draws the series in a box as wide as the panel and style.height high; the axes span the data
 // (x: the union of the series' x; y: their y). A tooltip gives the values under the mouse.

@@ -10,8 +10,9 @@
 #include <limits>
 #include <utility>
 
+#include "framing.hpp"  // chain_view
 #include "gl.hpp"
-#include "render_geometry.hpp"  // chain_floor_height, chain_mass_radius
+#include "render_geometry.hpp"  // chain_mass_radius, drawn_mass_radius
 #include "shader.hpp"           // shader_path
 #include "stability.hpp"
 
@@ -118,9 +119,16 @@ void scene::load_spring_stage() {
 }
 
 void scene::load_model() {
+  // Timed stage by stage for the frame anatomy (questions 1 and 3).
+  clock::time_point start = clock::now();
   load_spring_stage();
+  load_seconds_[static_cast<int>(stage_kind::spring)] = seconds_since(start);
+  start = clock::now();
   chain_stage.load_model();
+  load_seconds_[static_cast<int>(stage_kind::coupled)] = seconds_since(start);
+  start = clock::now();
   cloth_stage.load_model();
+  load_seconds_[static_cast<int>(stage_kind::cloth)] = seconds_since(start);
   status_ = {};
   view = framed_view();
   start_hold_seconds_left_ = control.start_hold_seconds;
@@ -131,10 +139,12 @@ void scene::load_model() {
 }
 
 void scene::reset() {
+  const clock::time_point start = clock::now();
   if (stage_ == stage_kind::spring)
     load_spring_stage();
   else
     with_current_stage([](auto& stage) { stage.load_model(); });
+  load_seconds_[static_cast<int>(stage_)] = seconds_since(start);
   if (stage_ == stage_kind::coupled)
     view = framed_view();  // the chain may have another length
   current_status() = {};
@@ -147,12 +157,7 @@ void scene::reset() {
 camera scene::framed_view() const {
   if (stage_ != stage_kind::coupled)
     return camera::default_for(stage_);
-  const particle_system& particles = chain_stage.particles();
-  const glm::vec3 top = particles.get_position(0);
-  const coupled_springs_parameters& p = chain_stage.parameters;
-  const float bottom = chain_floor_height(top.z, chain_stage.springs(), p.dynamics.mass,
-                                          p.dynamics.gravity, p.stiffness);
-  return camera::framing(stage_, top.x, top.y, bottom, top.z + 0.2f);
+  return chain_view(chain_stage);
 }
 
 void scene::select_stage(stage_kind stage) {
@@ -367,8 +372,11 @@ bool scene::grab_particle(const pick_ray& ray, double max_angle) {
     return false;
   if (mass_drag_parameters* drag = mass_drag()) {  // stages 1 and 2: a mass
     const particle_system& particles = mass_particles();
+    // The spheres as drawn: at least a few pixels wide, however far the view.
+    const float metres_per_pixel = view.metres_per_pixel(static_cast<float>(viewport_height_));
     const std::optional<std::size_t> picked =
-        pick_mass(particles, ray, chain_mass_radius, chain_fixed_point_radius, max_angle);
+        pick_mass(particles, ray, drawn_mass_radius(chain_mass_radius, metres_per_pixel),
+                  drawn_mass_radius(chain_fixed_point_radius, metres_per_pixel), max_angle);
     if (!picked)
       return false;
     const std::string stage = std::string(stage_name(stage_));
@@ -514,6 +522,12 @@ void scene::single_step() {
 // ---- Every frame: simulation, then display ----------------------------------------------
 
 void scene::draw_scene(double frame_seconds, int left, int width, int height) {
+  // The frame anatomy of this frame, filled in as its phases run.
+  anatomy_ = {.stage = stage_,
+              .on_gpu = cloth_on_gpu(),
+              .gpu_compute = cloth_on_gpu() && backend_ == cloth_backend::gpu_compute,
+              .load_seconds = load_seconds_[static_cast<int>(stage_)],
+              .frame = anatomy_.frame + 1};
   state_fresh_ = false;
   if (backend_ != cloth_backend::cpu) {
     // The integrator, tearing or self-collision can change while the cloth is on the GPU (the
@@ -627,6 +641,9 @@ void scene::simulate(int steps, double wall_clock_budget) {
   if (on_gpu)
     glFinish();
   const double stepping_seconds = seconds_since(start);
+  anatomy_.steps = done;
+  if (on_gpu)
+    anatomy_.gpu_steps_seconds = stepping_seconds;
   // The state comes back only for what the panel shows, at a bounded rate; and, while the cloth
   // can tear, for the springs overlay, whose lines are the springs of cloth_stage.
   const bool overlay_needs_state = display.show_springs && cloth_stage.parameters.tear_strain > 0.0;
@@ -680,14 +697,26 @@ int scene::run_gpu_steps(int count) {
 // a run whose speeds pass far beyond anything a stable run reaches (stability.hpp), so that
 // the explosion is caught before the numbers overflow. (The GPU paths: simulate.)
 void scene::step_current_stage() {
-  auto [time_step, check] = with_current_stage([](auto& stage) {
-    stage.compute_force();      // forces from the positions at the start of the step
-    stage.apply_force();        // numerical integration
+  // Each phase timed for the frame anatomy (questions 1 and 3), around the student's functions.
+  auto [time_step, check] = with_current_stage([this](auto& stage) {
+    const clock::time_point start = clock::now();
+    stage.compute_force();  // forces from the positions at the start of the step
+    const clock::time_point forces_done = clock::now();
+    stage.apply_force();  // numerical integration (pins: fixed vertices are never moved)
+    const clock::time_point integrated = clock::now();
     stage.apply_constraints();  // the cloth's sphere, ground, self-collision, tearing
-    return std::pair{stage.parameters.dynamics.time_step, divergence_check(stage)};
+    const clock::time_point constrained = clock::now();
+    divergence_status found = divergence_check(stage);
+    const clock::time_point checked = clock::now();
+    anatomy_.compute_force_seconds += std::chrono::duration<double>(forces_done - start).count();
+    anatomy_.apply_force_seconds += std::chrono::duration<double>(integrated - forces_done).count();
+    anatomy_.constraints_seconds += std::chrono::duration<double>(constrained - integrated).count();
+    anatomy_.check_seconds += std::chrono::duration<double>(checked - constrained).count();
+    return std::pair{stage.parameters.dynamics.time_step, std::move(found)};
   });
   count_step(time_step);
   report_divergence(std::move(check));
+  record_spring_motion();
 }
 
 void scene::count_step(double time_step) {
@@ -730,6 +759,25 @@ void scene::draw(int left, int width, int height) {
     glClear(GL_COLOR_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);
   }
+  check_in_view();
+  const clock::time_point draw_start = clock::now();
+  draw_stage(left, width, height);
+  anatomy_.draw_seconds = seconds_since(draw_start);
+  if (stage_ == stage_kind::cloth && backend_ == cloth_backend::cpu && !status().diverged) {
+    anatomy_.normals_seconds = renderer_.last_normals_seconds();  // (part of the drawing's time)
+    anatomy_.draw_seconds -= anatomy_.normals_seconds;
+  }
+}
+
+void scene::finish_frame_anatomy(double poll_and_panel_seconds, double panel_and_swap_seconds,
+                                 double frame_seconds) {
+  anatomy_.poll_and_panel_seconds = poll_and_panel_seconds;
+  anatomy_.panel_and_swap_seconds = panel_and_swap_seconds;
+  anatomy_.frame_seconds = frame_seconds;
+  last_anatomy_ = anatomy_;
+}
+
+void scene::draw_stage(int left, int width, int height) {
   if (status().diverged) {
     // Nothing finite to draw: an empty scene (the renderer's background); the panel says why.
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -761,6 +809,22 @@ void scene::draw(int left, int width, int height) {
       }
       renderer_.draw(cloth_stage, view, display, width, height, left);
       break;
+  }
+}
+
+// Whether the stage fell below the view (the student's copy, before questions 6 to 9: the cloth
+// falls freely), said once in the output when it happens; the panel says it over the scene. On
+// the GPU paths, from the positions of the last read-back.
+void scene::check_in_view() {
+  const bool was_out = fell_out_of_view_;
+  const float aspect = static_cast<float>(viewport_width_) / static_cast<float>(viewport_height_);
+  fell_out_of_view_ = !status().diverged && with_current_stage([&](const auto& stage) {
+    return fell_below_view(view, aspect, stage.particles().position);
+  });
+  if (fell_out_of_view_ && !was_out) {
+    std::printf("clothlab-window: the %s stage fell out of view at t = %.2f s\n",
+                std::string(stage_name(stage_)).c_str(), status().time);
+    std::fflush(stdout);
   }
 }
 
@@ -826,8 +890,6 @@ void scene::record_energy() {
   if (energy_times_.size() == frames_kept)
     energy_times_.erase(energy_times_.begin());
   energy_times_.push_back(static_cast<float>(status().time));
-  if (stage_ == stage_kind::spring)
-    spring_motion_.record(spring_stage, status().time, status().step);
 }
 
 void scene::restart_energy_history() {
@@ -835,6 +897,14 @@ void scene::restart_energy_history() {
     history.clear();
   energy_times_.clear();
   record_energy();
+  record_spring_motion();
+}
+
+// Question 2's plot: a sample of the spring after every step (spring_motion.hpp), so that its
+// curve is the simulation's, whatever the frame rate.
+void scene::record_spring_motion() {
+  if (stage_ == stage_kind::spring && !status().diverged)
+    spring_motion_.record(spring_stage, status().time, status().step);
 }
 
 void scene::restart_rate_window() {

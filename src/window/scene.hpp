@@ -16,6 +16,7 @@
 #include "camera.hpp"
 #include "coupled_springs.hpp"
 #include "energy.hpp"
+#include "frame_anatomy.hpp"
 #include "gpu_cloth.hpp"
 #include "gpu_cloth_compute.hpp"
 #include "options.hpp"
@@ -117,6 +118,15 @@ class scene {
            !stability_explorer.running();
   }
   const run_status& status() const { return status_[static_cast<int>(stage_)]; }
+  // Questions 1 and 3: what ran in the last whole frame and how long each phase took
+  // (frame_anatomy.hpp). The main loop adds its own phases with finish_frame_anatomy after the
+  // swap.
+  const frame_anatomy& last_frame_anatomy() const { return last_anatomy_; }
+  void finish_frame_anatomy(double poll_and_panel_seconds, double panel_and_swap_seconds,
+                            double frame_seconds);
+  // True when the current stage fell below the view at the last frame: every particle under its
+  // bottom edge (framing.hpp), e.g. a cloth that nothing holds up. The panel says what to do.
+  bool fell_out_of_view() const { return fell_out_of_view_; }
   double current_time_step() const;  // dt of the current stage, s
   // Question 4: the energies after the last frame's steps, and each of them (J) after each of
   // the last frames since the stage was selected or reset, oldest first: kinetic, gravity,
@@ -229,6 +239,8 @@ class scene {
   void simulate(int steps, double wall_clock_budget);
   void step_current_stage();
   void draw(int left, int width, int height);
+  void draw_stage(int left, int width, int height);
+  void check_in_view();
   void measure_rates(int steps, double stepping_seconds);
   std::size_t cloth_spring_count() const;
   void report_first_tear();
@@ -245,6 +257,7 @@ class scene {
   void fall_back_to_cpu(const std::string& reason);
   void reload_gpu_cloth();
   void record_energy();
+  void record_spring_motion();
   void restart_energy_history();
   void load_spring_stage();
   // The mouse drag of the current stage when it is stage 1 or 2; nullptr on the cloth (whose
@@ -280,6 +293,10 @@ class scene {
   double measured_stepping_rate_ = 0.0;
   long steps_taken_ = 0;
   bool tear_reported_ = false;  // the cloth's first tear was said (until it is whole again)
+  bool fell_out_of_view_ = false;
+  frame_anatomy anatomy_;                 // this frame's, being measured
+  frame_anatomy last_anatomy_;            // the last whole frame's
+  std::array<double, 3> load_seconds_{};  // the last load_model of each stage, s
 
   // The GPU paths (questions 11 and 12, issue 9). While backend_ is gpu (gpu_compute), gpu_
   // (gpu_compute_) holds the cloth's state; cloth_stage holds a copy read back only when the

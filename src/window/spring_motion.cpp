@@ -6,12 +6,6 @@
 #include <cmath>
 
 namespace clothlab {
-namespace {
-
-constexpr std::size_t frames_kept = 600;
-
-}  // namespace
-
 double damped_oscillator::position(double tau) const {
   const double gamma = damping / 2;
   if (omega_squared <= 0.0) {
@@ -86,16 +80,23 @@ void spring_motion::record(const single_spring& stage, double time, long step) {
   }
   const double simulated = glm::dot(p1 - p0, rest_direction_) - rest_length_;
   const double exact_now = exact(time);
-  if (times_.size() == frames_kept) {
-    for (std::vector<float>* v : {&times_, &simulated_, &exact_, &error_})
-      v->erase(v->begin());
-  }
+  if (std::isfinite(simulated))
+    largest_error_ = std::max(largest_error_, std::abs(simulated - exact_now));
+  // A sample per step, or per window_seconds / max_samples of simulated time for a small dt
+  // (a thousandth less, so that rounding in the sum of the dt skips no step of dt = 0.01 s).
+  constexpr double spacing = window_seconds / max_samples;
+  if (!times_.empty() && time - last_sample_time_ < 0.999 * spacing)
+    return;
+  last_sample_time_ = time;
+  std::size_t old = 0;  // the samples older than the window, dropped
+  while (old < times_.size() && time - times_[old] > window_seconds)
+    ++old;
+  for (std::vector<float>* v : {&times_, &simulated_, &exact_, &error_})
+    v->erase(v->begin(), v->begin() + static_cast<std::ptrdiff_t>(old));
   times_.push_back(static_cast<float>(time));
   simulated_.push_back(static_cast<float>(simulated));
   exact_.push_back(static_cast<float>(exact_now));
   error_.push_back(static_cast<float>(simulated - exact_now));
-  if (std::isfinite(simulated))
-    largest_error_ = std::max(largest_error_, std::abs(simulated - exact_now));
 }
 
 }  // namespace clothlab

@@ -30,17 +30,25 @@ struct damped_oscillator {
 
 class spring_motion {
  public:
-  // After each frame's steps; time is the stage's t, step its step count (0 after a reset).
+  // The plot covers the last window_seconds of simulated time, with at most max_samples
+  // samples: one per step (dt = 0.01 s at the defaults), or one per window_seconds /
+  // max_samples of simulated time for a smaller dt.
+  static constexpr double window_seconds = 10.0;
+  static constexpr std::size_t max_samples = 1000;
+
+  // After each step (not each frame: a frame that stalls, a screenshot, takes many steps at
+  // once, and the plot would join them by a straight chord); time is the stage's t, step its
+  // step count (0 after a reset).
   void record(const single_spring& stage, double time, long step);
 
-  // The recorded frames since the comparison started, oldest first.
-  const std::vector<float>& times() const { return times_; }            // t, s
-  const std::vector<float>& simulated() const { return simulated_; }    // x, m
-  const std::vector<float>& exact_at_frames() const { return exact_; }  // m
-  const std::vector<float>& error() const { return error_; }            // simulated - exact, m
+  // The samples since the comparison started (at most window_seconds of them), oldest first.
+  const std::vector<float>& times() const { return times_; }             // t, s
+  const std::vector<float>& simulated() const { return simulated_; }     // x, m
+  const std::vector<float>& exact_at_samples() const { return exact_; }  // m
+  const std::vector<float>& error() const { return error_; }             // simulated - exact, m
   double exact(double time) const { return model_.position(time - start_time_); }
   double start_time() const { return start_time_; }
-  double largest_error() const { return largest_error_; }  // m, since the start
+  double largest_error() const { return largest_error_; }  // m, since the start, every step
   bool started() const { return !times_.empty(); }
 
  private:
@@ -53,6 +61,7 @@ class spring_motion {
   dynamics_parameters dynamics_;                  // the parameters the model was built with
   double stiffness_ = 0.0;
   double start_time_ = 0.0;
+  double last_sample_time_ = 0.0;  // s, of the newest sample (times_ holds floats)
   double largest_error_ = 0.0;
   std::vector<float> times_, simulated_, exact_, error_;
 };

@@ -293,6 +293,20 @@ class frame_counter {
   long done_ = 0;
 };
 
+// At exit, what question 2's plot holds: its samples are the steps, whatever the frames (the
+// window tests check that a stalled frame left no gap wider than a step).
+void print_spring_plot(const spring_motion& motion) {
+  const std::vector<float>& times = motion.times();
+  if (times.size() < 2)
+    return;
+  float widest_gap = 0.0f;
+  for (std::size_t i = 1; i < times.size(); ++i)
+    widest_gap = std::max(widest_gap, times[i] - times[i - 1]);
+  std::printf("clothlab-window: the x(t) plot: %zu samples over %.2f s, widest gap %.4f s\n",
+              times.size(), static_cast<double>(times.back() - times.front()),
+              static_cast<double>(widest_gap));
+}
+
 void apply_actions(const user_actions& actions, scene& the_scene, bool& show_help,
                    glfw_context& context) {
   if (actions.select_stage)
@@ -367,6 +381,7 @@ int main(int argc, char** argv) {
 
   while (!context->should_close()) {
     // ---- 1. Poll: window events, keys, mouse (a paused, idle window sleeps until one comes) ----
+    // (the frame anatomy's clock starts after the sleep: questions 1 and 3, frame_anatomy.hpp)
     window_input input;
     if (the_scene.idle() && frames_after_event == 0 && start.frames == 0) {
       bool woke_early = false;
@@ -385,6 +400,7 @@ int main(int argc, char** argv) {
     const double now = glfwGetTime();
     const double frame_seconds = now - previous_time;
     previous_time = now;
+    const double frame_start = now;
     user_actions actions = actions_from_keys(input.pressed_keys);
     mouse.update(context->window(), input.scroll, the_scene);
 
@@ -405,18 +421,24 @@ int main(int argc, char** argv) {
     const ImVec2 pixels_per_unit = ImGui::GetIO().DisplayFramebufferScale;  // HiDPI
     const int scene_left =
         std::min(static_cast<int>(panel_covered_width * pixels_per_unit.x), width - 1);
+    const double scene_start = glfwGetTime();
     the_scene.draw_scene(frame_seconds, scene_left, width - scene_left, height);
+    const double scene_end = glfwGetTime();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (actions.screenshot)
       save_screenshot(the_scene.stage(), width, height);
 
     // ---- 5. Swap ----
     context->swap_buffers();
+    const double frame_end = glfwGetTime();
+    the_scene.finish_frame_anatomy(scene_start - frame_start, frame_end - scene_end,
+                                   frame_end - frame_start);
     if (measured_run.frame_done(glfwGetTime(), the_scene.steps_taken()))
       break;
   }
   // Issue 9: the GPU paths' state comes back only for what the panel shows (scene.hpp).
   std::printf("clothlab-window: the GPU state was read back %ld times over %.1f s\n",
               the_scene.readbacks(), glfwGetTime());
+  print_spring_plot(the_scene.motion());
   return 0;
 }

@@ -297,6 +297,43 @@ TEST_F(RenderTest, ClothBackFacesAreDrawnWithTheirTint) {
   EXPECT_GT(back.b / back.r, 1.1f * front.b / front.r);
 }
 
+// A cloth folded flat on the ground (issue 19: the draped cloth dropped by the sphere, a stiff
+// cloth whose lower edge lies down): the ground contact puts both layers at z = z_g exactly, so
+// their depths tie, and the rasteriser's rounding picked the layer pixel by pixel, differently
+// from frame to frame (the layers flickered through each other). The renderer breaks the tie
+// the same way everywhere: the layer folded over (its back side up) is in front. The fold drawn
+// flat must look like the same fold with its lower layer 1 cm lower.
+TEST_F(RenderTest, AClothFoldedFlatShowsItsUpperLayerWhole) {
+  const auto folded = [](double lower_layer_drop) {
+    spring_mesh cloth;  // N = 20, 1 m
+    particle_system& particles = cloth.particles();
+    const int n = cloth.grid_size();
+    const double h = cloth.parameters.side_length / (n - 1);
+    for (int kv = 0; kv < n; ++kv) {
+      // Rows 0 to 9 lie flat from y = 0; rows 10 to 19 are folded back over them (row 19 on
+      // row 0), back side up.
+      const int row = kv < n / 2 ? kv : n - 1 - kv;
+      const double z = -1.0 - (kv < n / 2 ? lower_layer_drop : 0.0);
+      for (int ku = 0; ku < n; ++ku)
+        particles.set_position(spring_mesh::index(ku, kv, n), {ku * h - 0.5, row * h, z});
+    }
+    return cloth;
+  };
+  camera view;
+  view.target = {0.0f, 0.25f, -1.0f};
+  view.distance = 1.6f;
+  view.yaw = 0.8f;
+  view.pitch = 0.9f;
+  const render_settings settings = {.show_ground = false};
+  renderer_.draw(folded(0.0), view, settings, width, height);
+  const rgba_image flat = image_testing::read_framebuffer(width, height);
+  renderer_.draw(folded(0.01), view, settings, width, height);
+  const rgba_image apart = image_testing::read_framebuffer(width, height);
+  const double fraction = compare_images(flat, apart, pixel_tolerance).differing_fraction;
+  std::cout << "  " << 100.0 * fraction << "% of the pixels differ\n";
+  EXPECT_LT(fraction, 0.01) << "the two layers of the flat fold show through each other";
+}
+
 // The obstacle sphere (model.md, "sphere") is drawn with the cloth when it is on: lit, in its
 // own colour, with a soft shadow on the ground; not drawn when it is off.
 TEST_F(RenderTest, ClothSphereIsDrawnLitWithItsShadow) {

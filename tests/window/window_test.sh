@@ -2,7 +2,7 @@
 # Starts clothlab-window in a virtual X server (Xvfb), drives it with xdotool and checks what it
 # does. Every wait has a timeout, so that the test fails instead of hanging.
 #   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel|paused_idle
-#                  |grab|grab_gpu|grab_compute|rip|orbit|sphere|grab_mass
+#                  |grab|grab_gpu|grab_compute|rip|presets|spring_plot|fell_out_of_view|orbit|sphere|grab_mass
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -41,6 +41,10 @@ if [ "$scenario" = frames ]; then
   status=0
   "$program" --frames 0 >window.log 2>&1 || status=$?
   [ "$status" -eq 2 ] || fail "--frames 0 was accepted (exit $status, expected 2)"
+  # The refusal says the rule in a short line (it once printed the largest double, 309 digits).
+  grep -q "^clothlab: --frames: COUNT 0: must be a whole number of at least 1" window.log ||
+    fail "--frames 0's message does not say 'COUNT 0: must be a whole number of at least 1'"
+  [ "$(wc -L <window.log)" -le 120 ] || fail "--frames 0's message has a line over 120 characters"
   status=0
   timeout 120 "$program" --frames 40 >window.log 2>&1 || status=$?
   [ "$status" -eq 0 ] || fail "--frames 40 exited with status $status (expected 0)"
@@ -65,9 +69,14 @@ elif [ "$scenario" = grab_gpu ]; then
   arguments=(--stage cloth --backend gpu)
 elif [ "$scenario" = grab_compute ]; then
   arguments=(--stage cloth --backend gpu-compute)
-elif [ "$scenario" = rip ]; then
-  # The panel's Rip preset: a light cloth that tears at 100 % strain under a stiff drag.
-  arguments=(--stage cloth --mass 0.1 --tear-strain 1 --drag-stiffness 2000)
+elif [ "$scenario" = rip ] || [ "$scenario" = presets ]; then
+  # The panel's Rip preset (clicked below): a light cloth that tears at 100 % strain under a
+  # stiff drag.
+  arguments=(--stage cloth)
+elif [ "$scenario" = fell_out_of_view ]; then
+  arguments=(--stage cloth --pins none --ground-z none)  # nothing holds the cloth up
+elif [ "$scenario" = spring_plot ]; then
+  arguments=(--stage spring)
 elif [ "$scenario" = sphere ]; then
   arguments=(--stage cloth --pins none --sphere 0,0,-0.6,0.3)
 elif [ "$scenario" = grab_mass ]; then
@@ -81,7 +90,6 @@ window=$(timeout 30 xdotool search --sync --onlyvisible --name '^clothlab$' | he
   fail "no window named clothlab appeared within 30 s"
 [ -n "$window" ] || fail "no window named clothlab appeared"
 timeout 10 xdotool windowfocus --sync "$window" || fail "cannot focus the window"
-sleep 1
 
 still_running() {
   kill -0 "$pid" 2>/dev/null || fail "clothlab-window exited (or crashed) after: $1"
@@ -93,22 +101,26 @@ press() {
   still_running "key $1"
 }
 
-# Waits up to 10 s for a line of the program's output (the window runs at a few frames per
-# second on a loaded machine).
+# Waits up to 30 s for a line of the program's output (the window runs at a frame a second or
+# slower on a loaded machine: every wait is for an event, bounded only to fail instead of hang).
 wait_for_log() {
-  for _ in $(seq 40); do
+  for _ in $(seq 120); do
     grep -q "$1" window.log && return 0
     sleep 0.25
   done
   return 1
 }
 
+# The window has built its panel once (its first layout line): it is drawing and takes input.
+# (A fixed sleep here let a test's first drag start before the first frame under load.)
+wait_for_log "^clothlab-window: layout: " || fail "the window drew no frame within 30 s"
+
 # The screenshot key P writes clothlab-YYYYMMDD-HHMMSS-<stage>.png; waits for it.
 screenshot_of() {
   local stage=$1 before after file
   before=$(ls clothlab-*-"$stage"*.png 2>/dev/null | wc -l)
   press p
-  for _ in $(seq 40); do
+  for _ in $(seq 120); do
     after=$(ls clothlab-*-"$stage"*.png 2>/dev/null | wc -l)
     [ "$after" -gt "$before" ] && break
     sleep 0.25
@@ -132,11 +144,16 @@ check_image() {
 }
 
 # The cloth is in the picture: the red squares of its texture cover at least 1 % of the scene
-# right of the panel (the ground and the sky have no saturated red).
+# right of the panel (the ground and the sky have no red). Lit or in its own shade, front or
+# back (tinted) side: the cloth flapping in the wind shows either, depending on the moment of
+# the screenshot (a test that counted only the lit front's red failed when a screenshot came a
+# second earlier).
 check_cloth_drawn() {
   local file=$1 red
-  red=$(convert "$file" -crop 840x800+440+0 +repage -fx "r > 0.55 && g < 0.35 && b < 0.35" \
-    -format "%[fx:mean]" info:) || fail "cannot read $file"
+  # (on a 4 x smaller copy: -fx runs an interpreter per pixel, seconds for the whole scene)
+  red=$(convert "$file" -crop 840x800+440+0 +repage -sample 25% \
+    -fx "r > 0.45 && r > g + 0.2 && r > b + 0.12" -format "%[fx:mean]" info:) ||
+    fail "cannot read $file"
   awk -v f="$red" 'BEGIN { exit !(f > 0.01) }' || fail "$file shows no cloth (red fraction $red)"
   echo "window test: $file: the cloth's red covers $red of the scene"
 }
@@ -201,6 +218,51 @@ mass_point() {
           if (c > most) { most = c; best = i }
         }
         printf "%d %d\n", 410 + 2 * x[best] + 1, 2 * y[best] + 1 }'
+}
+
+# The panel's widget NAME (a button or radio button the window names in its layout lines,
+# CLOTHLAB_PRINT_LAYOUT): scrolls the panel with the wheel (up while the widget is above the
+# panel's sections, down otherwise) until the widget is whole in sight, then clicks its centre.
+click_widget() {  # NAME
+  local line x y
+  timeout 10 xdotool mousemove 200 400 || fail "xdotool mousemove failed"
+  local scrolled="" waited=0
+  for _ in $(seq 120); do
+    line=$(grep "^clothlab-window: widget \"$1\" at" window.log | tail -n 1)
+    # After a wheel click, the next one only once the window has drawn the panel scrolled (the
+    # widget's line changed): a slow window would otherwise receive a burst and overshoot
+    # (a wheel click that came before the window saw the mouse over the panel scrolls nothing:
+    # sent again after a second)
+    [ -n "$scrolled" ] && [ "$line" = "$scrolled" ] && [ "$waited" -lt 4 ] && {
+      waited=$((waited + 1))
+      sleep 0.25
+      continue
+    }
+    waited=0
+    case "$line" in
+      *", in sight") break ;;
+      "") ;;
+      *)
+        y=$(echo "$line" | sed -E 's/.* at \([0-9-]+, ([0-9-]+)\).*/\1/')
+        if [ "$y" -lt 200 ]; then  # above the panel's sections (behind the readouts) or the window
+          timeout 10 xdotool click 4 || fail "xdotool click 4 (wheel) failed"
+        else
+          timeout 10 xdotool click 5 || fail "xdotool click 5 (wheel) failed"
+        fi
+        scrolled=$line
+        ;;
+    esac
+    sleep 0.25
+  done
+  case "$line" in
+    *", in sight") ;;
+    *) fail "the panel's \"$1\" never came whole into sight (${line:-no layout line})" ;;
+  esac
+  read -r x y <<<"$(echo "$line" | sed -E 's/.* at \(([0-9-]+), ([0-9-]+)\).*/\1 \2/')"
+  timeout 10 xdotool mousemove "$x" "$y" || fail "xdotool mousemove failed"
+  sleep 0.3
+  timeout 10 xdotool click 1 || fail "xdotool click 1 failed"
+  echo "window test: clicked \"$1\" at ($x, $y)"
 }
 
 # The three numbers of the first "(x, y, z)" after `label` in a line of the log.
@@ -282,7 +344,62 @@ case "$scenario" in
       fail "springs went missing without tearing: $released"
     grep -q "cloth: .* -> CPU" window.log && fail "the cloth left its path: $(grep 'cloth:' window.log)"
     ;;
+  fell_out_of_view)
+    # A cloth with no pins and no ground falls out of the view within a second or two (as the
+    # student's copy does before questions 6 to 9): the window says so, over the scene.
+    wait_for_log "the cloth stage fell out of view at t = " ||
+      fail "the free-falling cloth never left the view (or the window did not say it)"
+    shot=$(screenshot_of cloth)
+    check_image "$shot" 1280 800 20
+    # The banner: a dark box over the light sky right of the panel (the sky has no dark pixel).
+    dark=$(convert "$shot" -crop 870x800+410+0 +repage -sample 25% -fx "r < 0.3 && g < 0.3 && b < 0.3" \
+      -format "%[fx:mean]" info:) || fail "cannot read $shot"
+    awk -v f="$dark" 'BEGIN { exit !(f > 0.02) }' ||
+      fail "$shot shows no banner over the scene (dark fraction $dark)"
+    echo "window test: the banner covers $dark of the scene"
+    press r  # back in view: the banner goes, and comes again when it falls out once more
+    for _ in $(seq 40); do
+      [ "$(grep -c "fell out of view" window.log)" -ge 2 ] && break
+      sleep 0.25
+    done
+    [ "$(grep -c "fell out of view" window.log)" -ge 2 ] || fail "after R the cloth did not fall out of view again"
+    ;;
+  spring_plot)
+    # Question 2's x(t) plot has a sample of every step: the frames that a screenshot stalls
+    # (tens of steps at once) leave no gap wider than a step (dt = 0.01 s) in it.
+    wait_for_log "layout: spring stage, running," || fail "the spring stage never ran"
+    first=$(screenshot_of spring)
+    second=$(screenshot_of spring)
+    echo "window test: screenshots $first, $second"
+    press n  # pauses after one more step
+    timeout 10 xdotool key --clearmodifiers Escape || fail "xdotool key Escape failed"
+    wait_for_log "the x(t) plot: " || fail "no line 'the x(t) plot: ...' at exit"
+    line=$(grep "the x(t) plot: " window.log)
+    gap=$(echo "$line" | sed -E 's/.*widest gap ([0-9.]+) s$/\1/')
+    awk -v g="$gap" 'BEGIN { exit !(g < 0.0101) }' ||
+      fail "the x(t) plot joins samples $gap s apart (dt = 0.01 s): $line"
+    echo "window test: $line"
+    ;;
+  presets)
+    # The Rip preset's button, in the tearing section, can be scrolled to and clicked (at
+    # 1280 x 800 it was cut off beside the full-width tear strain slider).
+    click_widget Rip
+    wait_for_log "preset Rip: m = 0.1 kg, tear strain 1, K_d = 2000 N/m" ||
+      fail "a click on the Rip button did not set the preset"
+    click_widget "Drape over a sphere"
+    wait_for_log "preset Drape over a sphere" || fail "a click on Drape did not set the preset"
+    # Questions 1 and 3: the frame anatomy opens and shows the steps' compute_force.
+    click_widget "frame anatomy"
+    for _ in $(seq 40); do
+      grep -q 'widget "frame anatomy: compute_force" at ([0-9]*, [0-9]*), in sight' window.log && break
+      sleep 0.25
+    done
+    grep -q 'widget "frame anatomy: compute_force" at ([0-9]*, [0-9]*), in sight' window.log ||
+      fail "the frame anatomy did not show compute_force once opened"
+    ;;
   rip)
+    click_widget Rip
+    wait_for_log "preset Rip:" || fail "a click on the Rip button did not set the preset"
     # A yank: the mouse jumps 300 px at once (a slow pull can leave the cloth in a stretched
     # equilibrium short of the strain, depending on the particle grabbed), then the button is
     # held until the window says the cloth tore (at most 40 s: under load the window runs far
@@ -295,9 +412,11 @@ case "$scenario" in
     ;;
   orbit)
     # A left drag that starts off the cloth (the sky, top right) orbits and grabs nothing.
-    sleep 1
     timeout 10 xdotool mousemove 1200 90 || fail "xdotool mousemove failed"
     timeout 10 xdotool mousedown 1 || fail "xdotool mousedown failed"
+    # The window polls the button once a frame: the drag moves once it saw the press (a press,
+    # moves and release within one slow frame would be no drag at all).
+    wait_for_log "left drag started (orbit)" || fail "the press off the cloth started no orbit"
     for _ in $(seq 6); do
       timeout 10 xdotool mousemove_relative -- -30 0 || fail "xdotool mousemove_relative failed"
       sleep 0.25
@@ -313,10 +432,10 @@ case "$scenario" in
     ;;
   sphere)
     # Shift + left drag moves the sphere to the right in the camera-facing plane; the camera stays.
-    sleep 1
     timeout 10 xdotool mousemove 1000 300 || fail "xdotool mousemove failed"
     timeout 10 xdotool keydown shift || fail "xdotool keydown shift failed"
     timeout 10 xdotool mousedown 1 || fail "xdotool mousedown failed"
+    wait_for_log "left drag started (sphere)" || fail "Shift + press started no sphere move"
     for _ in $(seq 6); do
       timeout 10 xdotool mousemove_relative -- 30 0 || fail "xdotool mousemove_relative failed"
       sleep 0.25
@@ -356,7 +475,18 @@ case "$scenario" in
     # Paused, the window sleeps between events instead of drawing the same frame again: under a
     # quarter of a core over 3 s (running, it takes one or two cores on llvmpipe).
     press space
-    sleep 1
+    # Measured once the window says it is paused (a fixed second was too short under load: the
+    # measurement then took in running frames).
+    wait_for_log "layout: cloth stage, paused," || fail "Space did not pause the cloth"
+    # Then until it is idle: the few frames drawn after the key event, a second or more each
+    # on a loaded machine (at most 20 s; then the measurement below says what it saw).
+    ticks_before=$(awk '{print $14 + $15}' /proc/$pid/stat)
+    for _ in $(seq 40); do
+      sleep 0.5
+      ticks_after=$(awk '{print $14 + $15}' /proc/$pid/stat)
+      [ $((ticks_after - ticks_before)) -le 5 ] && break  # under a tenth of a core
+      ticks_before=$ticks_after
+    done
     ticks_before=$(awk '{print $14 + $15}' /proc/$pid/stat)
     sleep 3
     ticks_after=$(awk '{print $14 + $15}' /proc/$pid/stat)
@@ -378,7 +508,14 @@ case "$scenario" in
     press g
     wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
     press n
-    check_steady_panel cloth 4
+    # The time mode: "fixed steps per frame" shows other widgets in the same height.
+    click_widget "fixed steps per frame"
+    wait_for_log "layout: cloth stage, paused, fixed steps, GPU," ||
+      fail "a click on \"fixed steps per frame\" did not change the time mode"
+    click_widget "real time"
+    wait_for_log "layout: cloth stage, paused, real time, GPU, message yes" ||
+      fail "no layout line after going back to real time"
+    check_steady_panel cloth 5
     ;;
   keys)
     press 1
@@ -437,16 +574,17 @@ case "$scenario" in
     check_cloth_drawn "$on_cpu"
     ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, orbit, sphere or grab_mass)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, presets, spring_plot, fell_out_of_view, orbit, sphere or grab_mass)"
     ;;
 esac
 
 timeout 10 xdotool key --clearmodifiers Escape || fail "xdotool key Escape failed"
-for _ in $(seq 40); do
+# (30 s: under load, 10 s once passed between Esc and the window's exit)
+for _ in $(seq 120); do
   kill -0 "$pid" 2>/dev/null || break
   sleep 0.25
 done
-kill -0 "$pid" 2>/dev/null && { kill "$pid"; fail "Esc did not close the window within 10 s"; }
+kill -0 "$pid" 2>/dev/null && { kill "$pid"; fail "Esc did not close the window within 30 s"; }
 status=0
 wait "$pid" || status=$?
 [ "$status" -eq 0 ] || fail "clothlab-window exited with status $status after Esc (expected 0)"
