@@ -853,7 +853,9 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   ImGui::Checkbox("self-collision", &self_collision);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);
-  slider("thickness d (m)", thickness, 0.001, 0.2, "%.3f", true);
+  // Up to the shortest rest length h, where the model clamps it (docs/model.md).
+  const double h = p.side_length / std::max(p.grid_size - 1, 1);
+  slider("thickness d (m)", thickness, 0.001, std::max(0.001, std::min(0.2, h)), "%.3f", true);
   p.self_collision_thickness = self_collision ? thickness : 0.0;
   // The GPU paths run what gpu_cloth::supports accepts; anything else takes the cloth back to
   // the CPU (scene::draw_scene), and this line says why beforehand.
