@@ -235,7 +235,7 @@ def main():
         questions = list(points)
         out = work / "out"
         graded = run([root / "scripts/grade", *subs, "--out", out, "--work", work / "kit",
-                      "--timeout", "3", "--test-budget", "40"])
+                      "--timeout", "2", "--test-budget", "30"])
         print(graded.stdout + graded.stderr[-6000:])
         if not check(graded.returncode == 0, "scripts/grade failed"):
             return 1
