@@ -27,7 +27,8 @@ from pathlib import Path
 QUESTIONS = ["q5", "q6", "q7", "q8", "q9", "q12", "q13"]
 TEACHER_FILES = ["docs/answers.md", "docs/teaching.md", "scripts/make-student-version",
                  "tests/student_copy", "shaders/gpu_compute_step.comp", "scripts/grade",
-                 "scripts/grade-benchmark", "tests/grade", "grading"]
+                 "scripts/grade-benchmark", "docs/images/grade-report.png", "tests/grade",
+                 "grading"]
 problems = []
 
 
