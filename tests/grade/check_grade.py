@@ -370,10 +370,13 @@ def main():
             commands = "\n".join(l for l in text.splitlines() if not l.strip().startswith("#"))
             try:
                 import yaml  # python3-yaml, where installed
-                document = yaml.safe_load(text)
-                steps = document["jobs"]["grade"]["steps"]
-                check(document.get(True, document.get("on")) is not None and steps,
-                      "grade.yml: no trigger or no steps")
+                for copy in (c for c in (root, maker.stubs)
+                             if (c / ".github/workflows/grade.yml").exists()):
+                    document = yaml.safe_load((copy / ".github/workflows/grade.yml").read_text())
+                    steps = document["jobs"]["grade"]["steps"]
+                    # (YAML 1.1 reads the key `on` as True.)
+                    check(document.get(True, document.get("on")) is not None and steps,
+                          f"grade.yml of {copy.name}: no trigger or no steps")
             except ImportError:
                 print("(python3-yaml is not installed: grade.yml's syntax is not checked)")
             for q in questions:
