@@ -15,8 +15,8 @@ The class is made from the solution and the student copy (scripts/make-student-v
   heidi  right, as a .zip, from "another version" of the copy (its version stamp differs)
   judy   a .tar.gz with no student file in it
 and each grade, grades.csv, results.json (Gradescope's fields), junit.xml and report.html are
-checked; then the Gradescope bundle's run_autograder runs on one submission in a folder laid out
-like Gradescope's, and the GitHub workflow's YAML is checked. One shared build (the grader's
+checked; then the Gradescope bundle's run_autograder grades carol's files, uploaded loose, in a
+folder laid out like Gradescope's, and the GitHub workflow's YAML is checked. One shared build (the grader's
 own), each submission an incremental rebuild of its own files.
 """
 import csv
@@ -351,7 +351,10 @@ def main():
             kit_manifest = json.loads((source / "clothlab-grade/manifest.json").read_text())
             check(kit_manifest == json.loads((work / "kit/manifest.json").read_text()),
                   "the bundle's manifest differs from the grader's")
-            shutil.copytree(work / "class" / "carol", work / "autograder" / "submission")
+            # Carol's files uploaded loose, as Gradescope's file upload hands them in.
+            (work / "autograder" / "submission").mkdir()
+            for name in maker.student_files():
+                shutil.copy(work / "class" / "carol" / name, work / "autograder" / "submission")
             # setup.sh would install the packages and build the kit (minutes): the kit built
             # above stands in for it (the same copy: same manifest).
             ran = run([source / "run_autograder"], env=dict(
@@ -361,7 +364,8 @@ def main():
             if check(ran.returncode == 0 and produced.exists(), "run_autograder wrote no "
                      f"results.json: {ran.stdout[-1500:]}{ran.stderr[-1500:]}"):
                 check(json.loads(produced.read_text())["score"] == results["carol"]["score"],
-                      "run_autograder's score differs from scripts/grade's for the same work")
+                      "run_autograder's score of carol's files, uploaded loose, differs from "
+                      "scripts/grade's of her copy")
 
         # The GitHub workflow.
         workflow = root / ".github/workflows/grade.yml"
