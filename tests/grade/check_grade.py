@@ -357,7 +357,9 @@ def main():
                 shutil.copy(work / "class" / "carol" / name, work / "autograder" / "submission")
             # setup.sh would install the packages and build the kit (minutes): the kit built
             # above stands in for it (the same copy: same manifest).
-            ran = run([source / "run_autograder"], env=dict(
+            # Gradescope runs /autograder/run_autograder, a copy of the bundle's.
+            shutil.copy2(source / "run_autograder", work / "autograder" / "run_autograder")
+            ran = run([work / "autograder" / "run_autograder"], env=dict(
                 os.environ, AUTOGRADER_ROOT=str(work / "autograder"),
                 CLOTHLAB_GRADE_KIT=str(work / "kit")))
             produced = work / "autograder" / "results" / "results.json"
