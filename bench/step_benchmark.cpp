@@ -49,6 +49,10 @@ void cpu_step(benchmark::State& state) {
 void cpu_parallel_step(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const clothlab::cloth_parameters p = cloth_of_size(n);
+  if (!clothlab::cloth_parallel::available()) {
+    state.SkipWithError(clothlab::cloth_parallel::unavailable);
+    return;
+  }
   clothlab::spring_mesh cloth(p);
   clothlab::cloth_parallel fast;  // all cores
   fast.load(cloth);

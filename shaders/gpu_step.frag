@@ -80,11 +80,19 @@ void main() {
   // Forces: the springs to every neighbour inside the grid, then the wind.
   vec3 force = vec3(0.0);
   // BEGIN SOLUTION Q12: the spring forces on the GPU
-  // STUDENT| // TODO Q12 (GPU springs): for each of the neighbour_count entries of neighbours[]
-  // STUDENT| // that is joined(k, i) to this particle (inside the N x N grid), the texel
-  // STUDENT| // j = k + neighbours[i].xy pulls it by a spring of family neighbours[i].z: add
-  // STUDENT| // spring_force(p, p_j, stiffness[family], rest_length[family]), p_j read with
-  // STUDENT| // texelFetch(position_texture, j, 0).xyz. For now the GPU cloth falls under gravity alone.
+  // STUDENT(handout)| // TODO Q12 (GPU springs): add the spring forces to this particle's force,
+  // STUDENT(handout)| // as compute_force does on the CPU (question 8), in single precision. The
+  // STUDENT(handout)| // 12 possible neighbours are in neighbours[] (offset xy, family z);
+  // STUDENT(handout)| // joined(k, i) says whether a spring joins this texel to its neighbour i;
+  // STUDENT(handout)| // positions come from position_texture (texelFetch), and stiffness[family]
+  // STUDENT(handout)| // and rest_length[family] are set by the CPU. For now the GPU cloth falls
+  // STUDENT(handout)| // under gravity alone. Done when ./test.sh -L q12 passes.
+  // STUDENT(guided)| // TODO Q12 (GPU springs): for each of the neighbour_count entries of
+  // STUDENT(guided)| // neighbours[] that is joined(k, i) to this particle (inside the N x N grid),
+  // STUDENT(guided)| // the texel j = k + neighbours[i].xy pulls it by a spring of family
+  // STUDENT(guided)| // neighbours[i].z: add spring_force(p, p_j, stiffness[family],
+  // STUDENT(guided)| // rest_length[family]), p_j read with texelFetch(position_texture, j, 0).xyz.
+  // STUDENT(guided)| // For now the GPU cloth falls under gravity alone.
   for (int i = 0; i < neighbour_count; ++i) {
     if (!joined(k, i)) continue;  // outside the grid (or torn)
     ivec2 j = k + neighbours[i].xy;
@@ -94,8 +102,12 @@ void main() {
   }
   // END SOLUTION Q12
   // BEGIN SOLUTION Q13: the wind on the GPU
-  // STUDENT| // TODO Q13 (GPU wind): add F_w = K_w <n, u_w> n, with n read from normal_texture at
-  // STUDENT| // this texel, K_w = wind_strength and u_w = wind_direction (already unit).
+  // STUDENT(handout)| // TODO Q13 (GPU wind): the wind of question 13 on the GPU, as on the CPU:
+  // STUDENT(handout)| // F_w = K_w <n, u_w> n, n read from normal_texture at this texel,
+  // STUDENT(handout)| // K_w = wind_strength, u_w = wind_direction (unit).
+  // STUDENT(guided)| // TODO Q13 (GPU wind): add F_w = K_w <n, u_w> n, with n read from
+  // STUDENT(guided)| // normal_texture at this texel, K_w = wind_strength and u_w = wind_direction
+  // STUDENT(guided)| // (already unit).
   vec3 n = texelFetch(normal_texture, k, 0).xyz;
   force += wind_strength * dot(n, wind_direction) * n;  // question 13: F_w = K_w <n, u_w> n
   // END SOLUTION Q13
@@ -121,13 +133,20 @@ void main() {
     }
   }
 
-  // Question 9: the ground z = z_g puts the particle back on it, stops its fall and damps its
-  // tangential velocity by (1 - mu_g dt).
+  // BEGIN SOLUTION Q9: the ground on the GPU
+  // STUDENT(handout)| // TODO Q9 (GPU ground): the plane z = ground_height of question 9 on the
+  // STUDENT(handout)| // GPU, as on the CPU (when ground_enabled): p_new and v_new are the
+  // STUDENT(handout)| // particle's position and velocity after the integration, ground_friction
+  // STUDENT(handout)| // the friction rate, time_step the step. For now the GPU cloth falls through.
+  // STUDENT(guided)| // TODO Q9 (GPU ground): if ground_enabled and p_new.z < ground_height: put it
+  // STUDENT(guided)| // back on the plane, v_new.z = max(v_new.z, 0), and damp v_new.xy by
+  // STUDENT(guided)| // (1 - ground_friction time_step). For now the GPU cloth falls through.
   if (ground_enabled && p_new.z < ground_height) {
     p_new.z = ground_height;
     v_new.z = max(v_new.z, 0.0);
     v_new.xy *= 1.0 - ground_friction * time_step;
   }
+  // END SOLUTION Q9
 
   new_position = vec4(p_new, 0.0);
   new_velocity = vec4(v_new, 0.0);

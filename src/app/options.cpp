@@ -13,6 +13,8 @@
 #include <sstream>
 #include <vector>
 
+#include "cloth_parallel.hpp"
+
 namespace clothlab {
 namespace {
 
@@ -581,6 +583,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       throw usage_error{"--obj " + o.obj_path +
                         ": the OBJ is the cloth's; use it with --stage cloth"};
     }
+    if (o.backend == backend_kind::cpu_parallel && !cloth_parallel::available())
+      throw usage_error{"--backend " + backend + ": " + cloth_parallel::unavailable};
     if (!o.headless && o.backend == backend_kind::cpu_parallel) {
       throw usage_error{"--backend " + backend +
                         ": headless only; the window runs the cpu, gpu and gpu-compute paths "

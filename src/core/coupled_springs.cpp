@@ -48,11 +48,20 @@ void coupled_springs::compute_force(std::span<const double> position,
   const double K = parameters.stiffness;  // every spring of the chain
   const double L0 = rest_length_;         // every spring's rest length
   // BEGIN SOLUTION Q5: the springs of the chain
-  // STUDENT| // TODO Q5 (coupled springs): the chain has n = particles_.size() - 1 masses, and
-  // STUDENT| // spring i (i = 1..n) joins p(i - 1) and p(i). Give
-  // STUDENT| // every spring of the chain its force, on BOTH of its ends (equation 2):
-  // STUDENT| //   F = spring_force(p(i), p(i - 1), K, L0) pulls p(i), and -F pulls p(i - 1).
-  // STUDENT| // For now only the first spring acts, and only on mass 1: the masses below it fall.
+  // STUDENT(handout)| // TODO Q5 (coupled springs): add the other springs of the chain (handout
+  // STUDENT(handout)| // section 3.5, figure 4). The chain has n = particles_.size() - 1 masses
+  // STUDENT(handout)| // below the fixed p(0); spring i (i = 1..n) joins p(i - 1) and p(i), with
+  // STUDENT(handout)| // stiffness K and rest length L0. A spring pulls on both of its ends:
+  // STUDENT(handout)| // spring_force(a, b, K, L0) is equation 2, the force on the end at a; decide
+  // STUDENT(handout)| // which force each end gets. add(i, F) adds F to the force on particle i.
+  // STUDENT(handout)| // For now only the first spring acts, and only on mass 1: the masses below
+  // STUDENT(handout)| // it fall. Done when ./test.sh -L q5 passes and the chain hangs and sways.
+  // STUDENT(guided)| // TODO Q5 (coupled springs): the chain has n = particles_.size() - 1 masses,
+  // STUDENT(guided)| // and spring i (i = 1..n) joins p(i - 1) and p(i). Give every spring of the
+  // STUDENT(guided)| // chain its force, on BOTH of its ends (equation 2):
+  // STUDENT(guided)| //   F = spring_force(p(i), p(i - 1), K, L0) pulls p(i), and -F pulls p(i - 1).
+  // STUDENT(guided)| // For now only the first spring acts, and only on mass 1: the masses below
+  // STUDENT(guided)| // it fall.
   // STUDENT| add(1, spring_force(p(1), p(0), K, L0));
   const std::size_t n = particles_.size() - 1;  // moving masses
   for (std::size_t i = 1; i <= n; ++i) {
@@ -73,7 +82,7 @@ void coupled_springs::apply_force() {
   const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
     compute_force(position, force);
   };
-  integrator_.step(parameters.dynamics, {sets, forces_at}, particles_);
+  integrator_.step(parameters.dynamics, {sets, forces_at}, particles_, spring_stage_key{});
 }
 
 }  // namespace clothlab

@@ -31,10 +31,6 @@ struct force_model {
 void evaluate_forces(const force_model& forces, std::span<const double> position,
                      std::span<double> force);
 
-// force <- the forces of the given springs alone: zero, then every set in order (equation 2).
-void compute_spring_forces(std::span<const spring_set> sets, std::span<const double> position,
-                           std::span<double> force);
-
 // The mouse drag on a mass of stages 1 and 2 (model.md, "Drag"): adds F_d = K_d (q - p_k) to
 // force[k], k = drag.mass, when the drag is on, k is one of the particles and it is not fixed
 // (the fixed p0 cannot be dragged). Positions and forces flat, 3k + c.

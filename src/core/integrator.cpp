@@ -4,8 +4,12 @@
 #include <string>
 
 namespace clothlab {
+namespace {
 
-void integrate(const dynamics_parameters& dynamics, particle_system& particles) {
+// The two schemes of model.md from particles.force, the forces at the start of the step:
+// v <- (1 - mu dt) v + dt (F / m + g) and the position update in the scheme's order (the
+// handout's code of section 2, for the masses of the single spring and the chain).
+void integrate_euler(const dynamics_parameters& dynamics, particle_system& particles) {
   const double dt = dynamics.time_step;
   const double damping_factor = 1.0 - dynamics.damping * dt;  // (1 - mu dt)
   const double inverse_mass = 1.0 / dynamics.mass;
@@ -43,10 +47,20 @@ void integrate(const dynamics_parameters& dynamics, particle_system& particles) 
     case integrator_kind::velocity_verlet:
     case integrator_kind::runge_kutta_4:
     case integrator_kind::implicit_euler:
-      throw std::invalid_argument("integrate(dynamics, particles): the integrator " +
-                                  std::string(integrator_name(dynamics.integrator)) +
-                                  " evaluates forces during the step: use time_integrator");
+      break;
   }
+}
+
+}  // namespace
+
+void time_integrator::step(const dynamics_parameters& dynamics, const force_model& forces,
+                           particle_system& particles, spring_stage_key) {
+  if (dynamics.integrator == integrator_kind::semi_implicit ||
+      dynamics.integrator == integrator_kind::explicit_euler) {
+    integrate_euler(dynamics, particles);
+    return;
+  }
+  step(dynamics, forces, particles);
 }
 
 void time_integrator::step(const dynamics_parameters& dynamics, const force_model& forces,
@@ -54,8 +68,9 @@ void time_integrator::step(const dynamics_parameters& dynamics, const force_mode
   switch (dynamics.integrator) {
     case integrator_kind::semi_implicit:
     case integrator_kind::explicit_euler:
-      integrate(dynamics, particles);
-      break;
+      throw std::invalid_argument(
+          "time_integrator: the " + std::string(integrator_name(dynamics.integrator)) +
+          " Euler scheme is the stage's own apply_force (the cloth's: question 6)");
     case integrator_kind::velocity_verlet:
       step_velocity_verlet(dynamics, forces, particles);
       break;

@@ -24,10 +24,13 @@ class single_spring {
   void compute_force();
   // The same forces at any positions (flat, 3k + c), for the integrators with several stages.
   void compute_force(std::span<const double> position, std::span<double> force) const;
-  void apply_force();  // numerical integration of one step (model.md)
+  void apply_force();          // numerical integration of one step (model.md)
+  void apply_constraints() {}  // none: the fixed p0 is apply_force's (it never moves it)
+  // One step, as the lab names its parts: forces, integration, constraints.
   void step() {
     compute_force();
     apply_force();
+    apply_constraints();
   }
 
   const particle_system& particles() const { return particles_; }

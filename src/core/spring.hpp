@@ -6,7 +6,6 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
-#include <span>
 
 namespace clothlab {
 
@@ -25,11 +24,5 @@ inline glm::dvec3 spring_force(const glm::dvec3& p_i, const glm::dvec3& p_j, dou
   const double L = glm::length(d);
   return K * (L0 - L) / L * d;
 }
-
-// For every spring, adds to the forces of both ends (Newton's third law):
-//   F_a = K (L0 - |p_a - p_b|) (p_a - p_b) / |p_a - p_b|,   F_b = -F_a.
-// position and force are flat arrays (3k + c).
-void accumulate_spring_forces(std::span<const spring> springs, double stiffness,
-                              std::span<const double> position, std::span<double> force);
 
 }  // namespace clothlab

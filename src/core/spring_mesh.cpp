@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "contacts.hpp"
 #include "integrator.hpp"
@@ -62,6 +64,7 @@ void spring_mesh::load_model() {
   const double side = parameters.side_length;
   const double h = side / (n - 1);  // rest distance between grid neighbours
   grid_size_ = n;
+  spacing_ = h;
   particles_.resize(static_cast<std::size_t>(n) * n);
   normals_.assign(3 * particles_.size(), 0.0);
 
@@ -72,27 +75,11 @@ void spring_mesh::load_model() {
     }
   }
 
-  // Rest lengths are the distances in this initial configuration (h, h sqrt(2) and 2h, up to
-  // rounding), kept for every vertex and every offset (du, dv) in [-2, 2]^2 that stays inside.
+  // The initial positions x0: rest lengths are the distances in this configuration.
+  rest_position_ = particles_.position;
   const auto rest_distance = [&](std::size_t a, std::size_t b) {
     return glm::length(particles_.get_position(a) - particles_.get_position(b));
   };
-  rest_lengths_.assign(rest_length_slot(particles_.size(), -2, -2), 0.0);
-  for (int kv = 0; kv < n; ++kv) {
-    for (int ku = 0; ku < n; ++ku) {
-      for (int dv = -2; dv <= 2; ++dv) {
-        for (int du = -2; du <= 2; ++du) {
-          if (ku + du >= 0 && ku + du < n && kv + dv >= 0 && kv + dv < n) {
-            rest_lengths_[rest_length_slot(index(ku, kv, n), du, dv)] =
-                rest_distance(index(ku, kv, n), index(ku + du, kv + dv, n));
-          }
-        }
-      }
-    }
-  }
-  rest_length_ = {rest_distance(index(0, 0, n), index(1, 0, n)),
-                  rest_distance(index(0, 0, n), index(1, 1, n)),
-                  n > 2 ? rest_distance(index(0, 0, n), index(2, 0, n)) : 2 * h};
 
   // The list of the springs, each once (drawing, energy, the implicit scheme's Jacobian).
   for (auto& family : springs_)
@@ -117,7 +104,7 @@ void spring_mesh::load_model() {
   add_springs(spring_family::shear, shear_neighbours);
   add_springs(spring_family::bending, bending_neighbours);
   // Every spring is intact until it tears (tear_springs).
-  spring_intact_.assign(rest_lengths_.size(), 0);
+  spring_intact_.assign(spring_slot(particles_.size(), -2, -2), 0);
   for (const auto& family : springs_) {
     for (const spring& s : family)
       set_spring_intact(s, 1);
@@ -126,9 +113,13 @@ void spring_mesh::load_model() {
   // Question 7: the two corners (0, 0) and (N-1, 0) never move.
   if (parameters.pins == pin_mode::corners) {
     // BEGIN SOLUTION Q7: pin two corners
-    // STUDENT| // TODO Q7 (pins): fix the two corners s(0, 0) and s(N-1, 0): set
-    // STUDENT| // particles_.is_fixed[k] = 1 for their index k = index(ku, kv, n). apply_force
-    // STUDENT| // never moves a fixed vertex. For now nothing is pinned: the cloth falls whole.
+    // STUDENT(handout)| // TODO Q7 (pins): fix two corners of the cloth, s(0, 0) and s(N-1, 0)
+    // STUDENT(handout)| // (n here): apply_force never moves a vertex marked in particles_.is_fixed
+    // STUDENT(handout)| // (index(ku, kv, n) gives its index k). For now nothing is pinned: the cloth
+    // STUDENT(handout)| // falls whole. Done when ./test.sh -L q7 passes.
+    // STUDENT(guided)| // TODO Q7 (pins): fix the two corners s(0, 0) and s(N-1, 0): set
+    // STUDENT(guided)| // particles_.is_fixed[k] = 1 for their index k = index(ku, kv, n). apply_force
+    // STUDENT(guided)| // never moves a fixed vertex. For now nothing is pinned: the cloth falls whole.
     particles_.is_fixed[index(0, 0, n)] = 1;
     particles_.is_fixed[index(n - 1, 0, n)] = 1;
     // END SOLUTION Q7
@@ -158,18 +149,13 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
     const std::size_t u = 3 * index(ku, kv, N);
     return glm::dvec3(position[u], position[u + 1], position[u + 2]);
   };
-  // L0(ku, kv, du, dv): the rest length of the spring from s(ku, kv) to s(ku + du, kv + dv), their
-  // distance in the initial configuration (h, h sqrt 2 or 2h).
-  [[maybe_unused]] const auto L0 = [this, N](int ku, int kv, int du, int dv) {
-    return rest_lengths_[rest_length_slot(index(ku, kv, N), du, dv)];
+  // x0(ku, kv): the position of s(ku, kv) in the initial flat cloth, at rest (load_model), and
+  // h, the distance between two neighbours of a row there, m.
+  [[maybe_unused]] const auto x0 = [this, N](int ku, int kv) {
+    const std::size_t u = 3 * index(ku, kv, N);
+    return glm::dvec3(rest_position_[u], rest_position_[u + 1], rest_position_[u + 2]);
   };
-  // joined(ku, kv, du, dv): a spring joins s(ku, kv) to s(ku + du, kv + dv): the neighbour is
-  // inside the grid (springs stop at its border) and the spring is not torn (tearing is an
-  // addition of clothlab, off by default).
-  [[maybe_unused]] const auto joined = [this, N](int ku, int kv, int du, int dv) {
-    return ku + du >= 0 && ku + du < N && kv + dv >= 0 && kv + dv < N &&
-           spring_intact_[rest_length_slot(index(ku, kv, N), du, dv)] != 0;
-  };
+  [[maybe_unused]] const double h = spacing_;
 
   // The wind (question 13) needs the normals of these positions: into normals() at the
   // current state, into a scratch array at an integrator's intermediate state.
@@ -194,38 +180,72 @@ void spring_mesh::compute_force(std::span<const double> position, std::span<doub
       glm::dvec3 f = {0.0, 0.0, 0.0};  // the force on s(ku, kv), N (gravity: in apply_force)
 
       // BEGIN SOLUTION Q8: structural springs
-      // STUDENT| // TODO Q8 (structural springs): for each neighbour (du, dv) in
-      // STUDENT| // structural_neighbours, s(ku+1, kv), s(ku, kv+1), s(ku-1, kv), s(ku, kv-1), that
-      // STUDENT| // is joined(ku, kv, du, dv) to s(ku, kv), add the force of equation 2 of the spring
-      // STUDENT| // from x_current to x(ku + du, kv + dv), of stiffness K_structural and rest length
-      // STUDENT| // L0(ku, kv, du, dv):  f += spring_force(x_current, x_neighbour, K, rest_length).
+      // STUDENT(handout)| // TODO Q8 (structural springs): add to f the forces of the structural
+      // STUDENT(handout)| // springs that join s(ku, kv) to its neighbours (section 4.4 of the handout,
+      // STUDENT(handout)| // figure 6; structural_neighbours lists their offsets (du, dv)). A spring
+      // STUDENT(handout)| // pulls by equation 2 (spring_force) with stiffness K_structural and its
+      // STUDENT(handout)| // rest length L0: derive L0 from the initial flat cloth (h, the grid
+      // STUDENT(handout)| // spacing, and x0(ku, kv), the initial positions, are at hand). Decide
+      // STUDENT(handout)| // which springs exist at the border of the N x N grid, and leave out a
+      // STUDENT(handout)| // spring that tore: spring_intact(ku, kv, du, dv), for a neighbour inside
+      // STUDENT(handout)| // the grid. Done when ./test.sh -L q8 passes and the cloth hangs together.
+      // STUDENT(guided)| // TODO Q8 (structural springs): for each (du, dv) in structural_neighbours,
+      // STUDENT(guided)| // the neighbour s(ku + du, kv + dv) = s(ku+1, kv), s(ku, kv+1), s(ku-1, kv),
+      // STUDENT(guided)| // s(ku, kv-1): if it is inside the grid (0 <= ku + du < N, 0 <= kv + dv < N)
+      // STUDENT(guided)| // and spring_intact(ku, kv, du, dv) (not torn), add the force of equation 2,
+      // STUDENT(guided)| //   f += spring_force(x_current, x(ku + du, kv + dv), K_structural, L0),
+      // STUDENT(guided)| // L0 the rest length: h for a structural spring (h sqrt 2 for a shear one,
+      // STUDENT(guided)| // 2h for a bending one; or the distance of x0 of the two vertices).
       for (const auto [du, dv] : structural_neighbours) {
-        if (joined(ku, kv, du, dv))
-          f += spring_force(x_current, x(ku + du, kv + dv), K_structural, L0(ku, kv, du, dv));
+        const int ku2 = ku + du;  // the neighbour s(ku2, kv2)
+        const int kv2 = kv + dv;
+        if (ku2 < 0 || ku2 >= N || kv2 < 0 || kv2 >= N || !spring_intact(ku, kv, du, dv))
+          continue;  // no spring past the border of the grid; a torn spring pulls no more
+        const double L0 = glm::length(x0(ku, kv) - x0(ku2, kv2));  // its length at rest
+        f += spring_force(x_current, x(ku2, kv2), K_structural, L0);
       }
       // END SOLUTION Q8
 
       // BEGIN SOLUTION Q8: shear springs
-      // STUDENT| // TODO Q8 (shear springs): the same with shear_neighbours, the four diagonals
-      // STUDENT| // s(ku+1, kv+1), s(ku-1, kv+1), s(ku-1, kv-1), s(ku+1, kv-1), and K_shear.
+      // STUDENT(handout)| // TODO Q8 (shear springs): the same for the shear springs
+      // STUDENT(handout)| // (shear_neighbours, stiffness K_shear): their rest length is yours to
+      // STUDENT(handout)| // derive too.
+      // STUDENT(guided)| // TODO Q8 (shear springs): the same with shear_neighbours, the four
+      // STUDENT(guided)| // diagonals s(ku+1, kv+1), s(ku-1, kv+1), s(ku-1, kv-1), s(ku+1, kv-1),
+      // STUDENT(guided)| // K_shear and L0 = h sqrt 2.
       for (const auto [du, dv] : shear_neighbours) {
-        if (joined(ku, kv, du, dv))
-          f += spring_force(x_current, x(ku + du, kv + dv), K_shear, L0(ku, kv, du, dv));
+        const int ku2 = ku + du;
+        const int kv2 = kv + dv;
+        if (ku2 < 0 || ku2 >= N || kv2 < 0 || kv2 >= N || !spring_intact(ku, kv, du, dv))
+          continue;
+        const double L0 = glm::length(x0(ku, kv) - x0(ku2, kv2));
+        f += spring_force(x_current, x(ku2, kv2), K_shear, L0);
       }
       // END SOLUTION Q8
 
       // BEGIN SOLUTION Q8: bending springs
-      // STUDENT| // TODO Q8 (bending springs): the same with bending_neighbours, two vertices away,
-      // STUDENT| // s(ku+2, kv), s(ku, kv+2), s(ku-2, kv), s(ku, kv-2), and K_bending.
+      // STUDENT(handout)| // TODO Q8 (bending springs): the same for the bending springs, two
+      // STUDENT(handout)| // vertices away (bending_neighbours, stiffness K_bending).
+      // STUDENT(guided)| // TODO Q8 (bending springs): the same with bending_neighbours, two vertices
+      // STUDENT(guided)| // away, s(ku+2, kv), s(ku, kv+2), s(ku-2, kv), s(ku, kv-2), K_bending and
+      // STUDENT(guided)| // L0 = 2h.
       for (const auto [du, dv] : bending_neighbours) {
-        if (joined(ku, kv, du, dv))
-          f += spring_force(x_current, x(ku + du, kv + dv), K_bending, L0(ku, kv, du, dv));
+        const int ku2 = ku + du;
+        const int kv2 = kv + dv;
+        if (ku2 < 0 || ku2 >= N || kv2 < 0 || kv2 >= N || !spring_intact(ku, kv, du, dv))
+          continue;
+        const double L0 = glm::length(x0(ku, kv) - x0(ku2, kv2));
+        f += spring_force(x_current, x(ku2, kv2), K_bending, L0);
       }
       // END SOLUTION Q8
 
       // BEGIN SOLUTION Q13: wind
-      // STUDENT| // TODO Q13 (wind): when K_w != 0, add F_w = K_w <n, u_w> n, with n(ku, kv)
-      // STUDENT| // the unit normal at the vertex and u_w the unit wind direction (glm::dot).
+      // STUDENT(handout)| // TODO Q13 (wind): add the force of the wind on the vertex, the handout's
+      // STUDENT(handout)| // F_w = K_w <n, u_w> n (section 5), K_w the wind's strength, u_w its unit
+      // STUDENT(handout)| // direction, n(ku, kv) the unit normal at the vertex (only valid when K_w
+      // STUDENT(handout)| // != 0). Done when ./test.sh -L q13 passes and the cloth billows.
+      // STUDENT(guided)| // TODO Q13 (wind): when K_w != 0, add F_w = K_w <n, u_w> n, with n(ku, kv)
+      // STUDENT(guided)| // the unit normal at the vertex and u_w the unit wind direction (glm::dot).
       const glm::dvec3 normal_here = K_w != 0.0 ? n(ku, kv) : glm::dvec3(0.0);  // no wind: none
       f += K_w * glm::dot(normal_here, u_w) * normal_here;
       // END SOLUTION Q13
@@ -254,19 +274,33 @@ void spring_mesh::apply_force() {
   // The mass (and stiffnesses) that the grid size implies in the chosen scaling (question 10).
   const cloth_parameters used = effective_parameters();
   const dynamics_parameters& d = used.dynamics;
-  if (d.integrator == integrator_kind::semi_implicit) {
-    // The handout's explicit Euler (section 4.3): the velocities first, then the positions with
-    // the new velocities.
-    const double dt = d.time_step;                // s
-    const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
+  if (d.integrator == integrator_kind::semi_implicit ||
+      d.integrator == integrator_kind::explicit_euler) {
+    // Question 6, the handout's explicit Euler (section 4.3). semi_implicit (the default) is the
+    // handout's code order; explicit_euler is its equation 6 taken literally.
+    [[maybe_unused]] const bool handout_order = d.integrator == integrator_kind::semi_implicit;
+    const double dt = d.time_step;                 // s
+    const glm::dvec3 g = {0.0, 0.0, -d.gravity};   // m/s^2
+    [[maybe_unused]] const double mu = d.damping;  // 1/s
+    [[maybe_unused]] const double m = d.mass;      // kg
     const std::size_t count = particles_.size();
     // BEGIN SOLUTION Q6: apply_force, the handout's two loops
-    // STUDENT| // TODO Q6 (apply_force): for every vertex k that is not fixed (is_fixed[k] == 0),
-    // STUDENT| //   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
-    // STUDENT| // with mu = d.damping (1/s) and m = d.mass (kg); then, in a second loop,
-    // STUDENT| //   vertices[k] += dt speed[k].
-    // STUDENT| // Use particles_.get_force(k), get_velocity(k), set_velocity(k, v), get_position(k)
-    // STUDENT| // and set_position(k, p). For now every vertex falls freely: no springs, no damping.
+    // STUDENT(handout)| // TODO Q6 (apply_force): integrate the vertices over one step dt by the
+    // STUDENT(handout)| // handout's explicit Euler: its pseudo-code of section 4.3 (the two loops
+    // STUDENT(handout)| // over the vertices, handout_order) and, for --integrator explicit, its
+    // STUDENT(handout)| // equation 6 taken literally (both updates from the state at the start of
+    // STUDENT(handout)| // the step). The acceleration is the force over the mass m plus gravity g
+    // STUDENT(handout)| // (equation 4), with damping mu. A fixed vertex never moves. At hand:
+    // STUDENT(handout)| // particles_.get_force(k), get_velocity(k), set_velocity(k, v),
+    // STUDENT(handout)| // get_position(k), set_position(k, p), is_fixed[k]. For now every vertex
+    // STUDENT(handout)| // falls freely. Done when ./test.sh -L q6 passes.
+    // STUDENT(guided)| // TODO Q6 (apply_force): for every vertex k that is not fixed
+    // STUDENT(guided)| // (is_fixed[k] == 0),
+    // STUDENT(guided)| //   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
+    // STUDENT(guided)| // then, in a second loop, vertices[k] += dt speed[k] (handout_order); for
+    // STUDENT(guided)| // --integrator explicit, one loop with the position moved by the OLD speed.
+    // STUDENT(guided)| // Use particles_.get_force(k), get_velocity(k), set_velocity(k, v),
+    // STUDENT(guided)| // get_position(k) and set_position(k, p). For now every vertex falls freely.
     // STUDENT| for (std::size_t k = 0; k < count; ++k) {
     // STUDENT|   if (particles_.is_fixed[k])
     // STUDENT|     continue;
@@ -274,35 +308,47 @@ void spring_mesh::apply_force() {
     // STUDENT|   particles_.set_velocity(k, v);
     // STUDENT|   particles_.set_position(k, particles_.get_position(k) + dt * v);
     // STUDENT| }
-    const double mu = d.damping;  // 1/s
-    const double m = d.mass;      // kg
-    // for every vertex k: speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
-    for (std::size_t k = 0; k < count; ++k) {
-      if (particles_.is_fixed[k])
-        continue;  // a fixed vertex never moves (question 7)
-      const glm::dvec3 acceleration = particles_.get_force(k) / m + g;
-      particles_.set_velocity(k, (1.0 - dt * mu) * particles_.get_velocity(k) + dt * acceleration);
-    }
-    // for every vertex k: vertices[k] += dt speed[k]
-    for (std::size_t k = 0; k < count; ++k) {
-      if (particles_.is_fixed[k])
-        continue;
-      const glm::dvec3 new_position = particles_.get_position(k) + dt * particles_.get_velocity(k);
-      particles_.set_position(k, new_position);
+    if (handout_order) {
+      // for every vertex k: speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
+      for (std::size_t k = 0; k < count; ++k) {
+        if (particles_.is_fixed[k])
+          continue;  // a fixed vertex never moves (question 7)
+        const glm::dvec3 acceleration = particles_.get_force(k) / m + g;
+        particles_.set_velocity(k,
+                                (1.0 - dt * mu) * particles_.get_velocity(k) + dt * acceleration);
+      }
+      // for every vertex k: vertices[k] += dt speed[k]
+      for (std::size_t k = 0; k < count; ++k) {
+        if (particles_.is_fixed[k])
+          continue;
+        particles_.set_position(k, particles_.get_position(k) + dt * particles_.get_velocity(k));
+      }
+    } else {
+      // Equation 6: p(t + dt) = p(t) + dt v(t), v(t + dt) = (1 - mu dt) v(t) + dt (F / m + g).
+      for (std::size_t k = 0; k < count; ++k) {
+        if (particles_.is_fixed[k])
+          continue;
+        const glm::dvec3 v = particles_.get_velocity(k);
+        particles_.set_position(k, particles_.get_position(k) + dt * v);
+        particles_.set_velocity(k, (1.0 - dt * mu) * v + dt * (particles_.get_force(k) / m + g));
+      }
     }
     // END SOLUTION Q6
   } else {
     // The stability lab's other schemes (src/core/integrator.cpp), not a question of the lab.
     integrator_.step(d, forces(spring_sets()), particles_);
   }
-  // The contacts, in the order of docs/model.md: the sphere (an addition), the ground
-  // (question 9), self-collision (an addition), then tearing (an addition).
+}
+
+void spring_mesh::apply_constraints() {
+  // In the order of docs/model.md: the sphere (an addition), the ground (question 9),
+  // self-collision (an addition), then tearing (an addition). The pins are apply_force's: it
+  // never moves a fixed vertex.
+  const double dt = effective_parameters().dynamics.time_step;
   if (parameters.sphere.enabled)
-    apply_sphere_contact(parameters.sphere, d.time_step, particles_);
-  if (parameters.ground_enabled) {  // question 9
-    apply_ground_contact(parameters.ground_height, parameters.ground_friction, d.time_step,
-                         particles_);
-  }
+    apply_sphere_contact(parameters.sphere, dt, particles_);
+  if (parameters.ground_enabled)  // question 9
+    apply_ground_contact(parameters.ground_height, parameters.ground_friction, dt, particles_);
   if (parameters.self_collision_thickness > 0.0)
     self_collision_.apply(grid_size_, parameters.self_collision_thickness, particles_);
   if (parameters.tear_strain > 0.0)
@@ -320,8 +366,22 @@ void spring_mesh::set_spring_intact(const spring& s, std::uint8_t intact) {
   const int n = grid_size_;
   const int du = static_cast<int>(s.b % n) - static_cast<int>(s.a % n);
   const int dv = static_cast<int>(s.b / n) - static_cast<int>(s.a / n);
-  spring_intact_[rest_length_slot(s.a, du, dv)] = intact;
-  spring_intact_[rest_length_slot(s.b, -du, -dv)] = intact;
+  spring_intact_[spring_slot(s.a, du, dv)] = intact;
+  spring_intact_[spring_slot(s.b, -du, -dv)] = intact;
+}
+
+bool spring_mesh::spring_intact(int ku, int kv, int du, int dv) const {
+  const int n = grid_size_;
+  const auto inside = [n](int u, int v) { return u >= 0 && u < n && v >= 0 && v < n; };
+  if (!inside(ku, kv) || !inside(ku + du, kv + dv) || du < -2 || du > 2 || dv < -2 || dv > 2) {
+    throw std::out_of_range("spring_intact(" + std::to_string(ku) + ", " + std::to_string(kv) +
+                            ", " + std::to_string(du) + ", " + std::to_string(dv) + "): s(" +
+                            std::to_string(ku + du) + ", " + std::to_string(kv + dv) +
+                            ") is not a neighbour inside the " + std::to_string(n) + " x " +
+                            std::to_string(n) + " grid: no spring can join it to s(" +
+                            std::to_string(ku) + ", " + std::to_string(kv) + ")");
+  }
+  return spring_intact_[spring_slot(index(ku, kv, n), du, dv)] != 0;
 }
 
 bool spring_mesh::triangle_intact(int ku, int kv, bool upper) const {
@@ -329,13 +389,13 @@ bool spring_mesh::triangle_intact(int ku, int kv, bool upper) const {
   const std::size_t k = index(ku, kv, n);
   // Lower (ku, kv), (ku+1, kv), (ku+1, kv+1); upper (ku, kv), (ku+1, kv+1), (ku, kv+1): both
   // share the shear diagonal (ku, kv)-(ku+1, kv+1).
-  const bool diagonal = spring_intact_[rest_length_slot(k, 1, 1)] != 0;
+  const bool diagonal = spring_intact_[spring_slot(k, 1, 1)] != 0;
   if (upper) {
-    return diagonal && spring_intact_[rest_length_slot(k, 0, 1)] != 0 &&
-           spring_intact_[rest_length_slot(index(ku, kv + 1, n), 1, 0)] != 0;
+    return diagonal && spring_intact_[spring_slot(k, 0, 1)] != 0 &&
+           spring_intact_[spring_slot(index(ku, kv + 1, n), 1, 0)] != 0;
   }
-  return diagonal && spring_intact_[rest_length_slot(k, 1, 0)] != 0 &&
-         spring_intact_[rest_length_slot(index(ku + 1, kv, n), 0, 1)] != 0;
+  return diagonal && spring_intact_[spring_slot(k, 1, 0)] != 0 &&
+         spring_intact_[spring_slot(index(ku + 1, kv, n), 0, 1)] != 0;
 }
 
 void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal) {
@@ -370,9 +430,17 @@ void apply_ground_contact(double ground_height, double ground_friction, double t
     glm::dvec3 p = particles.get_position(k);
     glm::dvec3 v = particles.get_velocity(k);
     // BEGIN SOLUTION Q9: the ground z = z_g
-    // STUDENT| // TODO Q9 (ground): if the vertex is below the plane (p.z < z_g), put it back on it
-    // STUDENT| // (p.z = z_g), stop its fall (v.z = max(v.z, 0)) and damp its sliding by fluid
-    // STUDENT| // friction: (v.x, v.y) *= (1 - mu_g dt). For now the cloth falls through the floor.
+    // STUDENT(handout)| // TODO Q9 (ground): model the plane z = z_g (handout question 9): a vertex
+    // STUDENT(handout)| // may not stay below it, and a vertex in contact with it is slowed by a
+    // STUDENT(handout)| // fluid friction of rate mu_g (like the damping of equation 3, along the
+    // STUDENT(handout)| // plane). p and v are the vertex's position and velocity after the
+    // STUDENT(handout)| // integration, dt the step: decide what becomes of the position and of each
+    // STUDENT(handout)| // component of the velocity. For now the cloth falls through the floor.
+    // STUDENT(handout)| // Done when ./test.sh -L q9 passes and the cloth lies on the checkerboard.
+    // STUDENT(guided)| // TODO Q9 (ground): if the vertex is below the plane (p.z < z_g), put it back
+    // STUDENT(guided)| // on it (p.z = z_g), stop its fall (v.z = max(v.z, 0)) and damp its sliding by
+    // STUDENT(guided)| // fluid friction: (v.x, v.y) *= (1 - mu_g dt). For now the cloth falls
+    // STUDENT(guided)| // through the floor.
     if (p.z < z_g) {
       p.z = z_g;
       v.z = std::max(v.z, 0.0);

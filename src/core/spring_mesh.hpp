@@ -37,13 +37,18 @@ class spring_mesh {
   // The same forces at any positions (flat, 3k + c), for the integrators with several stages;
   // the wind uses the normals of those positions.
   void compute_force(std::span<const double> position, std::span<double> force);
-  // Numerical integration (question 6): the handout's explicit Euler loops for the default
-  // semi-implicit integrator (the stability lab's schemes otherwise), then the ground contact
-  // (question 9).
+  // Numerical integration (question 6): the handout's explicit Euler, in its code's order
+  // (semi-implicit, the default) or its equation 6's (explicit); the stability lab's schemes
+  // otherwise. Fixed vertices never move.
   void apply_force();
+  // The constraints after the integration, in the order of docs/model.md: the sphere, the
+  // ground (question 9), self-collision, tearing (each off unless its parameter says so).
+  void apply_constraints();
+  // One step, as the lab names its parts: forces, integration, constraints.
   void step() {
     compute_force();
     apply_force();
+    apply_constraints();
   }
 
   // Recomputes normals() from the current positions. A step computes them only when the wind
@@ -89,19 +94,14 @@ class spring_mesh {
   // along its diagonal (ku, kv)-(ku+1, kv+1) into the lower triangle (ku, kv), (ku+1, kv),
   // (ku+1, kv+1) and the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1). 0 <= ku, kv < N - 1.
   bool triangle_intact(int ku, int kv, bool upper) const;
-  // Whether a spring joins s(ku, kv) to s(ku + du, kv + dv) (inside the grid, not torn).
-  bool spring_intact(int ku, int kv, int du, int dv) const {
-    const int n = grid_size_;
-    return ku + du >= 0 && ku + du < n && kv + dv >= 0 && kv + dv < n && du >= -2 && du <= 2 &&
-           dv >= -2 && dv <= 2 && spring_intact_[rest_length_slot(index(ku, kv, n), du, dv)] != 0;
-  }
-  // L0 of the spring from particle k to the particle at (du, dv) from it (du, dv in [-2, 2]), m:
-  // their distance in the initial configuration (0 where there is no such particle).
-  double rest_length(std::size_t k, int du, int dv) const {
-    return rest_lengths_[rest_length_slot(k, du, dv)];
-  }
-  // L0 of a family, m: h, h sqrt(2) or 2h, as measured on the first cell (the GPU's uniforms).
-  double rest_length(spring_family family) const { return rest_length_[static_cast<int>(family)]; }
+  // Whether the spring from s(ku, kv) to s(ku + du, kv + dv) has not torn (tearing is an
+  // addition of clothlab, off by default: then every spring is intact). Both vertices must be
+  // inside the grid and |du|, |dv| <= 2: otherwise it throws std::out_of_range, naming them
+  // (which springs exist at the border is question 8's to decide).
+  bool spring_intact(int ku, int kv, int du, int dv) const;
+  // The initial position x0 of every particle, flat (3k + c): the flat cloth at rest, whose
+  // distances are the rest lengths (model.md).
+  std::span<const double> rest_positions() const { return rest_position_; }
   // The parameters the simulation uses: effective_cloth_parameters(parameters) for the N of the
   // last load_model, i.e. parameters themselves in the per_particle scaling (question 10).
   cloth_parameters effective_parameters() const;
@@ -114,17 +114,17 @@ class spring_mesh {
 
  private:
   int grid_size_ = 0;
+  double spacing_ = 0.0;  // h = S / (N - 1) of the last load_model, m
   particle_system particles_;
   std::vector<double> normals_;                 // n, unit, 3k + c
   std::array<std::vector<spring>, 3> springs_;  // indexed by spring_family
-  std::array<double, 3> rest_length_{};         // L0 of each family, indexed by spring_family
-  // The rest length from vertex k to the vertex at (du, dv) from it, du, dv in [-2, 2], at
-  // rest_length_slot(k, du, dv): the distances of the initial configuration (compute_force).
-  std::vector<double> rest_lengths_;
-  std::vector<std::uint8_t> spring_intact_;  // 1 where a spring joins k to (du, dv), same slots
-  self_collision self_collision_;            // its scratch arrays, kept between steps
+  std::vector<double> rest_position_;           // x0, the initial positions, 3k + c
+  // 1 where a spring joins k to the vertex at (du, dv) from it, du, dv in [-2, 2], at
+  // spring_slot(k, du, dv); 0 where it tore or there is no such vertex.
+  std::vector<std::uint8_t> spring_intact_;
+  self_collision self_collision_;  // its scratch arrays, kept between steps
   void set_spring_intact(const spring& s, std::uint8_t intact);  // both ends' slots
-  static std::size_t rest_length_slot(std::size_t k, int du, int dv) {
+  static std::size_t spring_slot(std::size_t k, int du, int dv) {
     return 25 * k + static_cast<std::size_t>(5 * (dv + 2) + (du + 2));
   }
   std::vector<double> stage_normals_;  // normals of a scheme's intermediate state (wind)

@@ -31,6 +31,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -188,39 +189,57 @@ void read_texel(GLuint framebuffer, GLenum attachment, int x, int y, float* rgba
   glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pixel_pack_buffer));
 }
 
+// The bit of the offset (du, dv) in a mask: its index in neighbour_offsets. Every spring joins
+// neighbours of the table.
+int neighbour_bit(int du, int dv) {
+  for (int bit = 0; bit < neighbour_count; ++bit) {
+    const auto& offset = neighbour_offsets[static_cast<std::size_t>(bit)];
+    if (offset[0] == du && offset[1] == dv)
+      return bit;
+  }
+  throw std::logic_error("neighbour_bit: (" + std::to_string(du) + ", " + std::to_string(dv) +
+                         ") is not a neighbour of the spring table");
+}
+
 }  // namespace
 
 void spring_masks(const spring_mesh& cloth, std::vector<std::uint32_t>& masks) {
-  const int n = cloth.grid_size();
+  const auto n = static_cast<std::uint32_t>(cloth.grid_size());
   masks.assign(static_cast<std::size_t>(n) * n, 0u);
-  for (int kv = 0; kv < n; ++kv) {
-    for (int ku = 0; ku < n; ++ku) {
-      std::uint32_t& mask = masks[spring_mesh::index(ku, kv, n)];
-      for (int bit = 0; bit < neighbour_count; ++bit) {
-        const auto& [du, dv, family] = neighbour_offsets[static_cast<std::size_t>(bit)];
-        if (cloth.spring_intact(ku, kv, du, dv))
-          mask |= 1u << bit;
-      }
+  // Each spring of the cloth's lists (the intact ones) sets its bit at both of its ends.
+  for (spring_family family : all_spring_families) {
+    for (const spring& s : cloth.springs(family)) {
+      const int du = static_cast<int>(s.b % n) - static_cast<int>(s.a % n);
+      const int dv = static_cast<int>(s.b / n) - static_cast<int>(s.a / n);
+      masks[s.a] |= 1u << neighbour_bit(du, dv);
+      masks[s.b] |= 1u << neighbour_bit(-du, -dv);
     }
   }
+}
+
+std::array<float, 3> family_rest_lengths(const spring_mesh& cloth) {
+  const int n = cloth.grid_size();
+  const std::span<const double> x0 = cloth.rest_positions();
+  // |x0(0, 0) - x0(du, dv)| for the first spring of each family; N = 2 has no bending spring
+  // (none of its texels uses that length).
+  const auto distance = [&](int du, int dv) {
+    const std::size_t b = 3 * spring_mesh::index(std::min(du, n - 1), dv, n);
+    return static_cast<float>(
+        glm::length(glm::dvec3(x0[0], x0[1], x0[2]) - glm::dvec3(x0[b], x0[b + 1], x0[b + 2])));
+  };
+  return {distance(1, 0), distance(1, 1), distance(2, 0)};
 }
 
 void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& cloth) {
   const auto n = static_cast<std::uint32_t>(cloth.grid_size());
   // The bit of the spring from a to b in a's mask (both ends agree: the GPU tears both at once).
   const auto bit_of = [n](const spring& s) {
-    const int du = static_cast<int>(s.b % n) - static_cast<int>(s.a % n);
-    const int dv = static_cast<int>(s.b / n) - static_cast<int>(s.a / n);
-    for (int bit = 0; bit < neighbour_count; ++bit) {
-      const auto& offset = neighbour_offsets[static_cast<std::size_t>(bit)];
-      if (offset[0] == du && offset[1] == dv)
-        return bit;
-    }
-    return -1;  // never: every spring joins neighbours of the table
+    return neighbour_bit(static_cast<int>(s.b % n) - static_cast<int>(s.a % n),
+                         static_cast<int>(s.b / n) - static_cast<int>(s.a / n));
   };
   cloth.remove_springs_if([&](const spring& s) {
     const int i = bit_of(s);
-    return i >= 0 && (masks[s.a] & (1u << i)) == 0u;
+    return (masks[s.a] & (1u << i)) == 0u;
   });
 }
 
@@ -433,11 +452,7 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
   if (empty_vertex_array_ == 0)
     glGenVertexArrays(1, &empty_vertex_array_);
 
-  // Rest lengths, one per family, from the CPU's springs: all springs of a family share it
-  // (h, h√2, 2h with h = S / (N - 1)). N = 2 has no bending spring: none of its texels uses 2h.
-  rest_length_ = {static_cast<float>(cloth.rest_length(spring_family::structural)),
-                  static_cast<float>(cloth.rest_length(spring_family::shear)),
-                  static_cast<float>(cloth.rest_length(spring_family::bending))};
+  rest_length_ = family_rest_lengths(cloth);
 
   // The CPU state as texels: texel (ku, kv) = particle k = ku + N kv, 4 floats each.
   const particle_system& particles = cloth.particles();

@@ -51,6 +51,9 @@ void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& clot
 void check_particle_index(const char* who, int grid_size, std::size_t k);
 
 // (1 + strain) L0 of the three families, the lengths beyond which their springs tear.
+// L0 of the structural, shear and bending springs (h, h√2 and 2h), the GPU's uniforms: the
+// distances in the initial flat cloth from s(0, 0) to s(1, 0), s(1, 1) and s(2, 0).
+std::array<float, 3> family_rest_lengths(const spring_mesh& cloth);
 std::array<float, 3> tear_lengths(double strain, const std::array<float, 3>& rest_length);
 
 // The uniforms of one step of the model (shaders/gpu_step.frag, gpu_compute_step.comp): their

@@ -75,9 +75,7 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
       return false;
     sent_tear_length_ = {};
   }
-  rest_length_ = {static_cast<float>(cloth.rest_length(spring_family::structural)),
-                  static_cast<float>(cloth.rest_length(spring_family::shear)),
-                  static_cast<float>(cloth.rest_length(spring_family::bending))};
+  rest_length_ = family_rest_lengths(cloth);
   const particle_system& particles = cloth.particles();
   const std::size_t count = particles.size();
   std::vector<float> positions(4 * count), velocities(4 * count);

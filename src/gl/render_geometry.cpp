@@ -94,11 +94,11 @@ cloth_indices make_cloth_indices(const spring_mesh& cloth) {
   first = indices.size();
   for (int kv = 0; kv < n; ++kv) {
     for (int ku = 0; ku < n; ++ku) {
-      if (cloth.spring_intact(ku, kv, 1, 0))
+      if (ku + 1 < n && cloth.spring_intact(ku, kv, 1, 0))
         indices.insert(indices.end(), {k(ku, kv), k(ku + 1, kv)});
-      if (cloth.spring_intact(ku, kv, 0, 1))
+      if (kv + 1 < n && cloth.spring_intact(ku, kv, 0, 1))
         indices.insert(indices.end(), {k(ku, kv), k(ku, kv + 1)});
-      if (cloth.spring_intact(ku, kv, 1, 1))
+      if (ku + 1 < n && kv + 1 < n && cloth.spring_intact(ku, kv, 1, 1))
         indices.insert(indices.end(), {k(ku, kv), k(ku + 1, kv + 1)});
     }
   }

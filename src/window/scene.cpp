@@ -681,8 +681,9 @@ int scene::run_gpu_steps(int count) {
 // the explosion is caught before the numbers overflow. (The GPU paths: simulate.)
 void scene::step_current_stage() {
   auto [time_step, check] = with_current_stage([](auto& stage) {
-    stage.compute_force();  // forces from the positions at the start of the step
-    stage.apply_force();    // integrator (and, for the cloth, the ground contact)
+    stage.compute_force();      // forces from the positions at the start of the step
+    stage.apply_force();        // numerical integration
+    stage.apply_constraints();  // the cloth's sphere, ground, self-collision, tearing
     return std::pair{stage.parameters.dynamics.time_step, divergence_check(stage)};
   });
   count_step(time_step);

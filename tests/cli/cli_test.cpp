@@ -284,8 +284,10 @@ INSTANTIATE_TEST_SUITE_P(
         arguments{"--scaling", "resolution-independent", "--reference-N", "10"},
         arguments{"--scaling", "per-particle"},
         // Issue 9: the other paths and the off-screen contexts.
+        // BEGIN TEACHER (the student copy has no parallel CPU path)
         arguments{"--backend", "cpu-parallel"},
         arguments{"--backend", "cpu-parallel", "--threads", "2", "--csv", "out.csv"},
+        // END TEACHER
         arguments{"--gl", "egl", "--backend", "gpu", "--png", "out.png", "--width", "32",
                   "--height", "32"},
         arguments{"--gl", "osmesa", "--png", "out.png", "--width", "32", "--height", "32"},
@@ -300,7 +302,9 @@ INSTANTIATE_TEST_SUITE_P(
         arguments{"--sphere", "0,0,-0.5,0.3", "--sphere-friction", "2", "--backend", "gpu"},
         arguments{"--tear-strain", "0.5", "--obj", "out.obj"},
         arguments{"--self-collision", "0.02"},
+        // BEGIN TEACHER
         arguments{"--tear-strain", "0.5", "--self-collision", "0.02", "--backend", "cpu-parallel"},
+        // END TEACHER
         // Issue 11: the implicit scheme takes any dt, its damping a force (no mu dt <= 1).
         arguments{"--stage", "spring", "--integrator", "implicit", "--dt", "2", "--mu", "0",
                   "--steps", "2000"},
@@ -657,9 +661,14 @@ INSTANTIATE_TEST_SUITE_P(
                   "--ground-friction"},
         bad_usage{"UnknownContext", {"--gl", "vulkan"}, "--gl"},
         bad_usage{"ThreadsWithoutParallel", {"--threads", "2"}, "--threads"},
+        // BEGIN TEACHER
         bad_usage{"TooManyThreads",
                   {"--backend", "cpu-parallel", "--threads", "100000"},
                   "--threads 100000"},
+        // END TEACHER
+        // COPY| bad_usage{"ParallelPathInTheTeachersCopy",
+        // COPY|           {"--backend", "cpu-parallel"},
+        // COPY|           "--backend cpu-parallel: the parallel CPU path (--backend cpu-parallel) is in the teacher's copy"},
         bad_usage{"ParallelSpring",
                   {"--stage", "spring", "--backend", "cpu-parallel"},
                   "--backend cpu-parallel"},
@@ -783,7 +792,11 @@ TEST_F(cli, ObjHoldsTheClothsVerticesAndTriangles) {
 // its torn springs back, so both write the same faces.
 TEST_F(SolutionCli, TornTrianglesLeaveTheObjOnBothCpuPaths) {
   std::vector<int> faces;
-  for (const char* backend : {"cpu", "cpu-parallel"}) {
+  // BEGIN TEACHER
+  const std::vector<const char*> backends = {"cpu", "cpu-parallel"};
+  // END TEACHER
+  // COPY| const std::vector<const char*> backends = {"cpu"};  // the copy has no cpu-parallel
+  for (const char* backend : backends) {
     const run_result result = run({"--headless", "--N", "8", "--steps", "300", "--tear-strain",
                                    "0.15", "--drag", "7,7:1.5,1.5,0.5", "--drag-stiffness", "20000",
                                    "--backend", backend, "--obj", "torn.obj"});
@@ -795,7 +808,9 @@ TEST_F(SolutionCli, TornTrianglesLeaveTheObjOnBothCpuPaths) {
     faces.push_back(count);
   }
   EXPECT_LT(faces[0], 98) << "the cloth must tear";
+  // BEGIN TEACHER
   EXPECT_EQ(faces[1], faces[0]) << "cpu-parallel's OBJ against cpu's";
+  // END TEACHER
 }
 
 }  // namespace

@@ -24,29 +24,20 @@ void expect_vec_eq(const glm::dvec3& actual, const glm::dvec3& expected, const c
 
 // p_a = (0, 0, 0), p_b = (3, 4, 0): |p_a - p_b| = 5, L0 = 4, K = 2:
 // F_a = 2 (4 - 5) (-3, -4, 0) / 5 = (1.2, 1.6, 0), pulling a towards b; F_b = -F_a.
-// The forces are added to what the array already holds.
 TEST(SpringForce, StretchedSpringMatchesEquationTwoOnBothEnds) {
-  const std::array<spring, 1> springs = {spring{0, 1, 4.0}};
-  const std::vector<double> position = {0.0, 0.0, 0.0, 3.0, 4.0, 0.0};
-  std::vector<double> force = {10.0, 0.0, 0.0, 0.0, 0.0, -1.0};
-  accumulate_spring_forces(springs, 2.0, position, force);
-  EXPECT_DOUBLE_EQ(force[0], 10.0 + 1.2);
-  EXPECT_DOUBLE_EQ(force[1], 1.6);
-  EXPECT_EQ(force[2], 0.0);
-  EXPECT_DOUBLE_EQ(force[3], -1.2);
-  EXPECT_DOUBLE_EQ(force[4], -1.6);
-  EXPECT_EQ(force[5], -1.0);
+  const glm::dvec3 a = {0.0, 0.0, 0.0};
+  const glm::dvec3 b = {3.0, 4.0, 0.0};
+  expect_vec_eq(spring_force(a, b, 2.0, 4.0), {1.2, 1.6, 0.0}, "F_a");
+  expect_vec_eq(spring_force(b, a, 2.0, 4.0), {-1.2, -1.6, 0.0}, "F_b");
 }
 
 // A compressed spring pushes its ends apart: p_a = (0,0,1), p_b = (0,0,0), L0 = 3, K = 5:
 // F_a = 5 (3 - 1) (0, 0, 1) / 1 = (0, 0, 10).
 TEST(SpringForce, CompressedSpringPushesTheEndsApart) {
-  const std::array<spring, 1> springs = {spring{0, 1, 3.0}};
-  const std::vector<double> position = {0.0, 0.0, 1.0, 0.0, 0.0, 0.0};
-  std::vector<double> force(6, 0.0);
-  accumulate_spring_forces(springs, 5.0, position, force);
-  EXPECT_DOUBLE_EQ(force[2], 10.0);
-  EXPECT_DOUBLE_EQ(force[5], -10.0);
+  const glm::dvec3 a = {0.0, 0.0, 1.0};
+  const glm::dvec3 b = {0.0, 0.0, 0.0};
+  expect_vec_eq(spring_force(a, b, 5.0, 3.0), {0.0, 0.0, 10.0}, "F_a");
+  expect_vec_eq(spring_force(b, a, 5.0, 3.0), {0.0, 0.0, -10.0}, "F_b");
 }
 
 TEST(SingleSpring, InitialStateMatchesTheModel) {
@@ -198,8 +189,9 @@ TEST(SingleSpringDrag, ForceOnP1IsTheSpringPlusKdTimesTargetMinusPosition) {
   pull_p1_by_hand(stage);
   stage.compute_force();
   expect_vec_near(stage.particles().get_force(1), {-56.0, 50.0, 28.0}, 1e-12, "F1");
-  // p0 feels the spring's reaction only.
-  expect_vec_near(stage.particles().get_force(0), {6.0, 0.0, -8.0}, 1e-12, "F0");
+  // The fixed p0 feels no force: the handout's code of section 2 computes p1's alone (and the
+  // drag never acts on p0).
+  expect_vec_near(stage.particles().get_force(0), {0.0, 0.0, 0.0}, 1e-12, "F0");
   stage.apply_force();
   expect_vec_near(stage.particles().get_velocity(1), {-0.56, 0.5, 0.182}, 1e-12, "v1");
   expect_vec_near(stage.particles().get_position(1), {0.6944, 0.005, 0.20182}, 1e-12, "p1");
@@ -217,14 +209,14 @@ TEST(CoupledSpringsDrag, ForceOnTheOnlyMassIsTheSpringPlusKdTimesTargetMinusPosi
 }
 
 // The fixed p0 cannot be dragged: a drag on particle 0 (or on no particle at all) adds nothing.
-// Same state as above: F0 is the spring's reaction (6, 0, -8), F1 the spring's (-6, 0, 8).
+// Same state as above: F1 is the spring's (-6, 0, 8); the fixed p0 feels no force.
 TEST(SingleSpringDrag, TheFixedPointCannotBeDragged) {
   for (const int mass : {0, 2, -1}) {
     single_spring stage;
     pull_p1_by_hand(stage);
     stage.parameters.drag.mass = mass;
     stage.step();
-    expect_vec_near(stage.particles().get_force(0), {6.0, 0.0, -8.0}, 1e-12, "F0");
+    expect_vec_near(stage.particles().get_force(0), {0.0, 0.0, 0.0}, 1e-12, "F0");
     expect_vec_near(stage.particles().get_force(1), {-6.0, 0.0, 8.0}, 1e-12, "F1");
     expect_vec_eq(stage.particles().get_position(0), {0.1, 0.0, 1.0}, "p0 stays");
   }

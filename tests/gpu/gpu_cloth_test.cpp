@@ -170,7 +170,7 @@ TEST_F(SolutionGpuCloth, SameRunsStayWithinTheToleranceOfTheCpu) {
   }
 }
 
-TEST_F(GpuCloth, TheComparisonFailsWhenTheGpuRunsAnotherCloth) {
+TEST_F(SolutionGpuCloth, TheComparisonFailsWhenTheGpuRunsAnotherCloth) {
   const cloth_parameters cpu_parameters = agreement_cases()[0].parameters;
   cloth_parameters stiffer = cpu_parameters;
   stiffer.structural_stiffness *= 1.01;  // 1 % stiffer on the GPU only
@@ -221,7 +221,7 @@ TEST_F(SolutionGpuCloth, PinnedParticlesStayExactlyInPlaceWithZeroVelocity) {
             -0.1);
 }
 
-TEST_F(GpuCloth, NoParticleEverEndsBelowTheGround) {
+TEST_F(SolutionGpuCloth, NoParticleEverEndsBelowTheGround) {
   cloth_parameters p = small_cloth();
   p.pins = pin_mode::none;
   p.ground_enabled = true;

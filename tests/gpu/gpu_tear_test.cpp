@@ -107,6 +107,8 @@ std::vector<std::string> springs_missing_from(const spring_mesh& a, const spring
       for (const auto& [du, dv, family] : neighbour_offsets) {
         if (dv < 0 || (dv == 0 && du < 0))
           continue;  // each spring from its first end only
+        if (ku + du < 0 || ku + du >= n || kv + dv < 0 || kv + dv >= n)
+          continue;  // no spring past the border
         if (a.spring_intact(ku, kv, du, dv) && !b.spring_intact(ku, kv, du, dv)) {
           char name[64];
           std::snprintf(name, sizeof name, "(%d,%d)-(%d,%d)", ku, kv, ku + du, kv + dv);

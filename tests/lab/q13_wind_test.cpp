@@ -1,10 +1,14 @@
 // Question 13: the wind, F_w = K_w <n, u_w> n on every vertex (n its unit normal, u_w the unit
 // wind direction), on the CPU (spring_mesh::compute_force) and on the GPU (shaders/gpu_step.frag).
-// The springs are off (stiffness 0) or at rest, so the wind is the only force.
+// The springs are off (stiffness 0) or at rest, so the wind is the only force. Every case is
+// checked on both paths: the flat cloth, the tilted cloth (<n, u_w> < 0), the wind opposite the
+// normal, a curved cloth whose normals all differ, and no wind.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "gl_fixture.hpp"
 #include "gpu_cloth.hpp"
@@ -28,6 +32,72 @@ cloth_parameters windy_cloth(double strength, const glm::dvec3& direction) {
   return p;
 }
 
+// "vertex 5 = s(1, 1)"
+std::string vertex(std::size_t k, int n) {
+  return "vertex " + std::to_string(k) + " = s(" + std::to_string(k % n) + ", " +
+         std::to_string(k / n) + ")";
+}
+
+// The cloth of windy_cloth turned by 30 degrees about x: s(ku, kv) = (x, y cos 30, y sin 30),
+// whose normal is n = (0, -sin 30, cos 30) = (0, -0.5, 0.866).
+void tilt(spring_mesh& cloth) {
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+    const glm::dvec3 p = cloth.particles().get_position(k);
+    cloth.particles().set_position(k, {p.x, p.y * c, p.y * s});
+  }
+}
+
+// A 4 x 4 cloth bent in both directions, z = 0.3 sin(3 x + 1) + 0.25 cos(4 y): every vertex has
+// its own normal, and a wind along (1, 2, 0.5) meets some from the front (<n, u_w> > 0), some
+// from the back (<n, u_w> < 0).
+void curve(spring_mesh& cloth) {
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+    const glm::dvec3 p = cloth.particles().get_position(k);
+    cloth.particles().set_position(
+        k, {p.x, p.y, 0.3 * std::sin(3 * p.x + 1) + 0.25 * std::cos(4 * p.y)});
+  }
+}
+
+// The wind force on every vertex by hand: F_w = K_w <n, u_w> n, with n the normal of model.md
+// (central differences, one-sided on the border: n = normalize(d_u x d_v)) and u_w = direction
+// normalised.
+std::vector<glm::dvec3> expected_wind(const spring_mesh& cloth, double K_w,
+                                      const glm::dvec3& direction) {
+  const int n = cloth.grid_size();
+  const auto p = [&](int ku, int kv) {
+    return cloth.particles().get_position(spring_mesh::index(ku, kv, n));
+  };
+  const glm::dvec3 u_w = direction / glm::length(direction);
+  std::vector<glm::dvec3> force;
+  for (int kv = 0; kv < n; ++kv) {
+    for (int ku = 0; ku < n; ++ku) {
+      const glm::dvec3 d_u = p(std::min(ku + 1, n - 1), kv) - p(std::max(ku - 1, 0), kv);
+      const glm::dvec3 d_v = p(ku, std::min(kv + 1, n - 1)) - p(ku, std::max(kv - 1, 0));
+      const glm::dvec3 normal = glm::normalize(glm::cross(d_u, d_v));
+      force.push_back(K_w * glm::dot(normal, u_w) * normal);
+    }
+  }
+  return force;
+}
+
+// The force of one GPU step from rest, without gravity or damping: F = m v / dt (single
+// precision).
+std::vector<glm::dvec3> gpu_forces(const spring_mesh& cloth, const cloth_parameters& p) {
+  spring_mesh state = cloth;
+  gpu_cloth gpu;
+  std::string error;
+  EXPECT_TRUE(gpu.load(state, error)) << error;
+  gpu.step(p);
+  gpu.read_state(state);
+  std::vector<glm::dvec3> force;
+  for (std::size_t k = 0; k < state.particles().size(); ++k)
+    force.push_back(p.dynamics.mass * state.particles().get_velocity(k) / p.dynamics.time_step);
+  return force;
+}
+
+constexpr double gpu_tolerance = 1e-4;  // N, single precision
+
 // Flat cloth: n = (0, 0, 1). Direction (0, 3, 4) -> u_w = (0, 0.6, 0.8), <n, u_w> = 0.8, and
 // with K_w = 3 every vertex feels F_w = 3 * 0.8 * (0, 0, 1) = (0, 0, 2.4).
 TEST(Q13Wind, AFlatClothFeelsTheWindAlongItsNormal) {
@@ -47,10 +117,7 @@ TEST(Q13Wind, AFlatClothFeelsTheWindAlongItsNormal) {
 TEST(Q13Wind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
   spring_mesh cloth(windy_cloth(5.0, {0, 1, 0}));
   const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
-  for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
-    const glm::dvec3 p = cloth.particles().get_position(k);
-    cloth.particles().set_position(k, {p.x, p.y * c, p.y * s});
-  }
+  tilt(cloth);
   cloth.compute_force();
   const glm::dvec3 n = {0, -s, c};
   for (std::size_t k = 0; k < cloth.particles().size(); ++k)
@@ -58,6 +125,35 @@ TEST(Q13Wind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
                    "Q13: a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
                    "strength 5 along y should feel K_w <n, u_w> n = (0, 1.25, -2.165); vertex " +
                        std::to_string(k));
+}
+
+// Flat cloth (n = (0, 0, 1)), wind of strength 4 blowing down along (0, 0, -2), against the
+// normal: u_w = (0, 0, -1), <n, u_w> = -1, F_w = 4 (-1) (0, 0, 1) = (0, 0, -4): pushed down.
+TEST(Q13Wind, AWindAgainstTheNormalPushesTheOtherWay) {
+  spring_mesh cloth(windy_cloth(4.0, {0, 0, -2}));
+  cloth.compute_force();
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
+    LAB_EXPECT_VEC(cloth.particles().get_force(k), glm::dvec3(0, 0, -4), 1e-12,
+                   "Q13: a wind blowing down (u_w = (0, 0, -1)) on the flat cloth (n = (0, 0, 1)) "
+                   "has <n, u_w> = -1 and pushes every vertex DOWN with K_w <n, u_w> n = "
+                   "(0, 0, -4) (keep the sign of <n, u_w>); " +
+                       vertex(k, 4));
+}
+
+// The curved cloth (see curve): every vertex feels K_w <n, u_w> n with its own normal.
+TEST(Q13Wind, EveryVertexOfACurvedClothFeelsTheWindOnItsOwnNormal) {
+  const glm::dvec3 direction = {1, 2, 0.5};
+  spring_mesh cloth(windy_cloth(3.0, direction));
+  curve(cloth);
+  const std::vector<glm::dvec3> expected = expected_wind(cloth, 3.0, direction);
+  cloth.compute_force();
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
+    LAB_EXPECT_VEC(cloth.particles().get_force(k), expected[k], 1e-9,
+                   "Q13: on a curved cloth each vertex has its own normal n(ku, kv); a wind of "
+                   "strength 3 along (1, 2, 0.5) pushes it with K_w <n, u_w> n, u_w the unit "
+                   "direction, along n, towards the side the wind blows (<n, u_w> may be "
+                   "negative); " +
+                       vertex(k, 4));
 }
 
 TEST(Q13Wind, NoWindNoForce) {
@@ -86,6 +182,61 @@ TEST_F(Q13GpuWind, TheGpuStepAddsTheWindAlongTheNormal) {
                    "one step of 0.01 s a 2 kg vertex of the flat cloth in a wind of strength 3 "
                    "along (0, 3, 4) moves at (0, 0, 0.012); texel " +
                        std::to_string(k));
+}
+
+// The tilted cloth of the CPU test on the GPU: n = (0, -0.5, 0.866), wind of strength 5 along y,
+// <n, u_w> = -0.5, F_w = (0, 1.25, -2.165).
+TEST_F(Q13GpuWind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
+  const cloth_parameters p = windy_cloth(5.0, {0, 1, 0});
+  spring_mesh cloth(p);
+  tilt(cloth);
+  const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
+  const glm::dvec3 n = {0, -0.5, std::cos(M_PI / 6)};
+  for (std::size_t k = 0; k < force.size(); ++k)
+    LAB_EXPECT_VEC(force[k], 5.0 * -0.5 * n, gpu_tolerance,
+                   "Q13 (GPU): a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
+                   "strength 5 along y has <n, u_w> = -0.5 (negative: keep its sign) and should "
+                   "feel K_w <n, u_w> n = (0, 1.25, -2.165), along n, not along the wind; " +
+                       vertex(k, 4));
+}
+
+// The flat cloth on the GPU in a wind blowing down: F_w = (0, 0, -4).
+TEST_F(Q13GpuWind, AWindAgainstTheNormalPushesTheOtherWay) {
+  const cloth_parameters p = windy_cloth(4.0, {0, 0, -2});
+  const spring_mesh cloth(p);
+  const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
+  for (std::size_t k = 0; k < force.size(); ++k)
+    LAB_EXPECT_VEC(force[k], glm::dvec3(0, 0, -4), gpu_tolerance,
+                   "Q13 (GPU): a wind blowing down (u_w = (0, 0, -1)) on the flat cloth "
+                   "(n = (0, 0, 1)) has <n, u_w> = -1 and pushes every texel DOWN with "
+                   "K_w <n, u_w> n = (0, 0, -4); " +
+                       vertex(k, 4));
+}
+
+// The curved cloth on the GPU: each texel's own normal, read from normal_texture at that texel.
+TEST_F(Q13GpuWind, EveryTexelOfACurvedClothFeelsTheWindOnItsOwnNormal) {
+  const glm::dvec3 direction = {1, 2, 0.5};
+  const cloth_parameters p = windy_cloth(3.0, direction);
+  spring_mesh cloth(p);
+  curve(cloth);
+  const std::vector<glm::dvec3> expected = expected_wind(cloth, 3.0, direction);
+  const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
+  for (std::size_t k = 0; k < force.size(); ++k)
+    LAB_EXPECT_VEC(force[k], expected[k], gpu_tolerance,
+                   "Q13 (GPU): on a curved cloth each texel has its own normal n, read from "
+                   "normal_texture at this texel k; a wind of strength 3 along (1, 2, 0.5) pushes "
+                   "it with K_w <n, u_w> n (<n, u_w> may be negative); " +
+                       vertex(k, 4));
+}
+
+TEST_F(Q13GpuWind, NoWindNoForce) {
+  const cloth_parameters p = windy_cloth(0.0, {0, 1, 0});
+  spring_mesh cloth(p);
+  curve(cloth);
+  const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
+  for (std::size_t k = 0; k < force.size(); ++k)
+    LAB_EXPECT_VEC(force[k], glm::dvec3(0.0), 0.0,
+                   "Q13 (GPU): with K_w = 0 there is no wind force; " + vertex(k, 4));
 }
 
 }  // namespace

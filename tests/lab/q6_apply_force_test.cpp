@@ -1,8 +1,13 @@
 // Question 6: spring_mesh::apply_force, the handout's explicit Euler (section 4.3): for every
 // vertex k that is not fixed,
-//   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g),   then   vertices[k] += dt speed[k].
-// The forces are set by hand here (compute_force is question 8), and the ground is off.
+//   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g),   then   vertices[k] += dt speed[k];
+// and, for --integrator explicit, the handout's equation 6 literally: the position moves with
+// the speed at the start of the step. The forces are set by hand here (compute_force is
+// question 8), and the ground is off.
 #include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
 
 #include "lab_check.hpp"
 #include "spring_mesh.hpp"
@@ -116,6 +121,49 @@ TEST(Q6ApplyForce, AFreeClothFallsWithTheDampedFreeFallOfOneParticle) {
            "at (1 - dt mu) v - g0 dt per step; vertex "
         << k;
     EXPECT_NEAR(cloth.particles().position[3 * k + 2], z, 1e-12) << "Q6: vertex " << k;
+  }
+}
+
+spring_mesh small_explicit_cloth() {
+  spring_mesh cloth = small_cloth();
+  cloth.parameters.dynamics.integrator = integrator_kind::explicit_euler;
+  return cloth;
+}
+
+// Equation 6 (--integrator explicit): the same vertex, v = (1, 2, 3), F = (4, -2, 6):
+//   p' = p + 0.1 (1, 2, 3)  (the OLD speed),   v' = (1.15, 1.8, 2.15) as above.
+TEST(Q6ApplyForce, ExplicitEulerMovesThePositionWithTheOldVelocity) {
+  spring_mesh cloth = small_explicit_cloth();
+  const glm::dvec3 p = cloth.particles().get_position(3);
+  cloth.particles().set_velocity(3, {1, 2, 3});
+  set_force(cloth, 3, {4, -2, 6});
+  cloth.apply_force();
+  LAB_EXPECT_VEC(cloth.particles().get_position(3), p + 0.1 * glm::dvec3(1, 2, 3), 1e-12,
+                 "Q6 (--integrator explicit): equation 6 moves the vertex with the speed at the "
+                 "START of the step, p(t + dt) = p(t) + dt v(t), not with the new one");
+  LAB_EXPECT_VEC(cloth.particles().get_velocity(3), glm::dvec3(1.15, 1.8, 2.15), 1e-12,
+                 "Q6 (--integrator explicit): v(t + dt) = (1 - mu dt) v(t) + dt (F / m + g), as "
+                 "in the handout's code");
+}
+
+// Equation 6 from rest: the first step leaves every vertex in place (it moves with v = 0) and
+// gives it the speed dt g = (0, 0, -1); a fixed vertex keeps both.
+TEST(Q6ApplyForce, ExplicitEulerLeavesAClothAtRestInPlaceOnItsFirstStep) {
+  spring_mesh cloth = small_explicit_cloth();
+  cloth.particles().is_fixed[0] = 1;
+  const std::vector<double> initial = cloth.particles().position;
+  cloth.apply_force();
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+    LAB_EXPECT_VEC(cloth.particles().get_position(k),
+                   glm::dvec3(initial[3 * k], initial[3 * k + 1], initial[3 * k + 2]), 0.0,
+                   "Q6 (--integrator explicit): from rest, the first step moves no vertex; "
+                   "vertex " +
+                       std::to_string(k));
+    LAB_EXPECT_VEC(cloth.particles().get_velocity(k),
+                   k == 0 ? glm::dvec3(0.0) : glm::dvec3(0, 0, -1), 1e-12,
+                   k == 0 ? "Q6 (--integrator explicit): a fixed vertex keeps a zero speed"
+                          : "Q6 (--integrator explicit): from rest the speed becomes dt g = "
+                            "(0, 0, -1)");
   }
 }
 

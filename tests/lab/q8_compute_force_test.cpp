@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "lab_check.hpp"
 #include "spring_mesh.hpp"
@@ -52,6 +53,26 @@ TEST(Q8ComputeForce, StructuralSpringsPullAStretchedVertexBack) {
   LAB_EXPECT_VEC(force_on(cloth, 1, 1), glm::dvec3(50, 0, 0), 1e-9,
                  "Q8, structural springs: s(1, 1) should feel the stretched spring to its "
                  "neighbour s(ku+1, kv) = s(2, 1): a spring pulls both of its ends");
+}
+
+// Tearing (an addition of clothlab): a torn spring pulls no more. The cloth and the pull of
+// StructuralSpringsPullAStretchedVertexBack, with the spring s(1, 1)-s(2, 1) torn: s(2, 1) feels
+// only its springs to s(2, 0) and s(2, 2), and s(1, 1) nothing (its other springs are at rest).
+TEST(Q8ComputeForce, ATornSpringPullsNoMore) {
+  spring_mesh cloth = cloth_with(3, 2.0, 100.0, 0.0, 0.0);
+  const std::size_t a = spring_mesh::index(1, 1, 3), b = spring_mesh::index(2, 1, 3);
+  cloth.remove_springs([&](spring_family, const spring& s) {
+    return (s.a == a && s.b == b) || (s.a == b && s.b == a);
+  });
+  move(cloth, 2, 1, {1.5, 0, 0});
+  cloth.compute_force();
+  const double side = 100.0 * (1 - std::sqrt(1.25)) / std::sqrt(1.25);
+  LAB_EXPECT_VEC(force_on(cloth, 2, 1), glm::dvec3(side, 0, 0), 1e-9,
+                 "Q8, tearing: the structural spring s(1, 1)-s(2, 1) has torn: s(2, 1) should feel "
+                 "only its springs to s(2, 0) and s(2, 2). Leave out a spring that is not "
+                 "spring_intact(ku, kv, du, dv)");
+  LAB_EXPECT_VEC(force_on(cloth, 1, 1), glm::dvec3(0.0), 1e-9,
+                 "Q8, tearing: s(1, 1) should feel nothing from its torn spring to s(2, 1)");
 }
 
 // Shear only, K = 100, 3 x 3, S = 2: move the centre s(1, 1) to c = (0.3, 0.2, 0.4). It is joined
@@ -155,6 +176,20 @@ TEST(Q8ComputeForce, SpringForcesSumToZeroAndExertNoTorque) {
   LAB_EXPECT_VEC(torque, glm::dvec3(0.0), 1e-9,
                  "Q8: the spring forces should exert no total torque (each pair lies along its "
                  "spring)");
+}
+
+// At rest, every spring at its rest length (h, h sqrt 2 or 2h): no force anywhere, corners,
+// borders and inner vertices alike (a wrong rest length shows here). 5 x 5, every family on.
+TEST(Q8ComputeForce, AClothAtRestFeelsNoSpringForce) {
+  spring_mesh cloth = cloth_with(5, 1.0, 500.0, 200.0, 50.0);
+  cloth.compute_force();
+  for (int kv = 0; kv < 5; ++kv)
+    for (int ku = 0; ku < 5; ++ku)
+      LAB_EXPECT_VEC(force_on(cloth, ku, kv), glm::dvec3(0.0), 1e-9,
+                     "Q8: on the flat cloth at rest every spring has its rest length (h for a "
+                     "structural spring, h sqrt 2 for a shear one, 2h for a bending one): s(" +
+                         std::to_string(ku) + ", " + std::to_string(kv) +
+                         ") should feel no spring force");
 }
 
 }  // namespace

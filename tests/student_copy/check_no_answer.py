@@ -1,0 +1,157 @@
+#!/usr/bin/env python3
+"""The student copy holds no answer outside the student's places (issue 17), at either hint
+level, and the check that says so can fail. Usage: check_no_answer.py PROJECT_ROOT
+
+1. scripts/make-student-version writes the copy at each hint level (handout, guided): it refuses
+   a copy whose code (src/, shaders/, scripts/, bench/) holds one of a question's answers
+   (ANSWERS, normalised code, C++ and GLSL) outside the student's places, or whose handout-level
+   TODOs write an answer; both copies are written.
+2. Planted leaks are refused: each question's answer, written into a file of a copy of the
+   project outside the student's places (C++ and GLSL), makes the generator fail naming the file
+   and the question.
+3. Each question's handout-level TODO holds none of its answers, while the guided TODOs of the
+   questions whose steps they spell out do (so that the check is seen to find them).
+4. The copy offers nothing to call instead of answering: none of the helpers that answered a
+   question in one call is declared in its headers, and the parallel CPU path is a stub that
+   names the teacher's copy.
+Exit 0 when all of this holds; otherwise every failed check is listed.
+"""
+import importlib.machinery
+import importlib.util
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+problems = []
+
+
+def check(condition, message):
+    if not condition:
+        problems.append(message)
+        print("FAILED: " + message, flush=True)
+    return condition
+
+
+def load_generator(root):
+    loader = importlib.machinery.SourceFileLoader("make_student_version",
+                                                  str(root / "scripts/make-student-version"))
+    spec = importlib.util.spec_from_loader(loader.name, loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+# One planted answer per question: (question, file of the copy, the line added to it).
+PLANTED = [
+    ("Q5", "src/core/single_spring.cpp", "void leak(std::size_t i) { add(i - 1, -F); }"),
+    ("Q6", "src/core/energy.cpp",
+     "for (std::size_t k = 0; k < count; ++k) { if (particles_.is_fixed[k]) continue; "
+     "const glm::dvec3 v = (1.0 - dt * mu) * particles_.get_velocity(k); }"),
+    ("Q7", "src/window/scene.cpp", "particles_.is_fixed[index(n - 1, 0, n)] = 1;"),
+    ("Q8", "src/core/contacts.cpp", "const double shear_rest = std::sqrt(2.0) * h;"),
+    ("Q8", "shaders/draw_flat.vert", "float L0 = length(x0(ku, kv) - x0(ku2, kv2));"),
+    ("Q9", "src/core/contacts.cpp", "v.z = std::max(v.z, 0.0);"),
+    ("Q9", "shaders/gpu_normal.frag", "v_new.z = max(v_new.z, 0.0);"),
+    ("Q12", "shaders/gpu_tear.frag", "force += spring_force(p, p_j, 1.0, 1.0);"),
+    ("Q13", "src/core/export.cpp", "f += K_w * glm::dot(n_here, u_w) * n_here;"),
+    ("Q13", "shaders/gpu_normal.frag", "force += K * dot(n, wind_direction) * n;"),
+]
+# What answered a question in one call before issue 17: none may be declared in the copy.
+REMOVED_CALLS = [r"\bintegrate\s*\(", r"\bcompute_spring_forces\s*\(",
+                 r"\baccumulate_spring_forces\s*\(", r"\brest_length\s*\(\s*(std::size_t|"
+                 r"spring_family)", r"\bjoined\s*\(", r"\bL0\s*\("]
+
+
+def generate(root, dest, *options):
+    return subprocess.run([sys.executable, str(root / "scripts/make-student-version"), str(dest),
+                           *options], capture_output=True, text=True)
+
+
+def main():
+    root = Path(sys.argv[1]).resolve()
+    generator = load_generator(root)
+    work = Path(tempfile.mkdtemp(prefix="clothlab-no-answer-"))
+    try:
+        # 1. Both hint levels: written, and the copy's headers and stubs are what they say.
+        for level in generator.HINT_LEVELS:
+            dest = work / f"copy-{level}"
+            made = generate(root, dest, "--hints", level)
+            check(made.returncode == 0, f"--hints {level}: make-student-version refused the "
+                                        f"copy:\n{made.stderr}")
+            if made.returncode != 0:
+                continue
+            marker = (dest / ".student-copy").read_text()
+            check(f"hints: {level}" in marker, f"--hints {level}: the marker says '{marker}'")
+            # 4. Nothing to call instead of answering.
+            for header in sorted((dest / "src").rglob("*.hpp")):
+                text = header.read_text()
+                code = re.sub(r"//[^\n]*", "", text)
+                for pattern in REMOVED_CALLS:
+                    check(not re.search(pattern, code),
+                          f"{header.relative_to(dest)} declares {pattern!r}: a student could "
+                          "call it instead of answering")
+            parallel = (dest / "src/core/cloth_parallel.cpp").read_text()
+            check("in the teacher's copy" in (dest / "src/core/cloth_parallel.hpp").read_text()
+                  and "return false;" in parallel and "#pragma omp" not in parallel,
+                  "the copy's cloth_parallel.cpp is not the stub that names the teacher's copy")
+            check(not (dest / "tests/model").exists() and
+                  not (dest / "shaders/gpu_compute_step.comp").exists(),
+                  "the copy has the Python reference model or the compute shader")
+
+        # 2. Planted leaks are refused, naming the file and the question.
+        tree = work / "planted"
+        for name in generator.project_files():
+            target = tree / name
+            target.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(root / name, target)
+        for question, name, line in PLANTED:
+            path = tree / name
+            original = path.read_text()
+            path.write_text(original + "\n" + line + "\n")
+            refused = generate(tree, work / "copy-planted")
+            path.write_text(original)
+            check(refused.returncode == 1 and name in refused.stderr and
+                  re.search(rf"\b{question}\b", refused.stderr),
+                  f"a planted answer of {question} in {name} ('{line}') was not refused:\n"
+                  f"{refused.stderr[-1500:]}")
+            shutil.rmtree(work / "copy-planted", ignore_errors=True)
+
+        # 3. The TODOs, question by question.
+        for level in generator.HINT_LEVELS:
+            regions = []
+            for name in generator.project_files():
+                if Path(name).suffix in (".cpp", ".frag", ".glsl", ".comp") and \
+                        not generator.is_teacher_file(name):
+                    text = (root / name).read_text()
+                    if "BEGIN SOLUTION" in text:
+                        generator.transform(name, text, set(), regions, level)
+            for question in generator.QUESTIONS:
+                todo = generator.todo_texts(regions, question)
+                check(f"TODO {question}" in todo, f"{level}: no TODO {question}")
+                found = generator.answers_in(todo, {question}, keep_comments=True)
+                if level == "handout":
+                    check(not found, f"the handout-level TODO of {question} writes its answer: "
+                                     f"{found}")
+                elif question != "Q13":  # the handout itself gives question 13's formula
+                    check(found, f"the guided TODO of {question} spells out its steps, yet the "
+                                 "answer check finds nothing in it: the check cannot fail")
+    finally:
+        if not problems:
+            shutil.rmtree(work, ignore_errors=True)
+        else:
+            print(f"(left in {work} to look at)")
+    if problems:
+        print(f"\n{len(problems)} problem(s):")
+        for p in problems:
+            print("  - " + p.splitlines()[0])
+        return 1
+    print(f"no answer outside the student's places at either hint level; {len(PLANTED)} planted "
+          "answers refused; the handout-level TODOs write no answer")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
