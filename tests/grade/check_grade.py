@@ -36,7 +36,8 @@ from pathlib import Path
 
 BEGIN = re.compile(r"^\s*(//|#)\s*BEGIN SOLUTION (Q\d+)")
 END = re.compile(r"^\s*(//|#)\s*END SOLUTION (Q\d+)")
-STUDENT = re.compile(r"^(\s*)(?://|#) STUDENT\|(?: (.*))?$")
+# make-student-version's STUDENT| lines: STUDENT(handout)| and STUDENT(guided)| are a hint level's.
+STUDENT = re.compile(r"^(\s*)(?://|#) STUDENT(?:\((\w+)\))?\|(?: (.*))?$")
 problems = []
 
 
@@ -64,7 +65,8 @@ def regions(teacher_file):
         elif current:
             student = STUDENT.match(line)
             if student:
-                current[2].append(student.group(1) + (student.group(2) or ""))
+                if student.group(2) in (None, "handout"):
+                    current[2].append(student.group(1) + (student.group(3) or ""))
             else:
                 current[1].append(line)
     return found
@@ -102,7 +104,7 @@ class Maker:
             text = path.read_text()
             for q, solution, stub in regions(self.root / name):
                 if q == question and solution in text and old in solution:
-                    path.write_text(text.replace(solution, solution.replace(old, new, 1)))
+                    path.write_text(text.replace(solution, solution.replace(old, new)))
                     return
         self.stub(folder, question)
         print(f"(note: '{old.strip()}' is no longer in {question}'s solution: the region is "
