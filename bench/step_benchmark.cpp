@@ -3,20 +3,26 @@
 // threaded, vectorised path, double precision, all cores) and step/gpu/N (gpu_cloth::step,
 // fragment shaders, single precision) and step/gpu-compute/N (gpu_cloth_compute, compute
 // shaders)? Each reports steps/s and the time per spring.
-// The GPU step runs in an off-screen OSMesa context: on a machine without a GPU that is
-// llvmpipe, Mesa's software rasteriser on the CPU, so it measures the shader path, not a GPU.
+// The GPU step runs in an off-screen context chosen as clothlab chooses it (--gl auto|egl|osmesa,
+// docs/cli.md): clothlab_bench holds an OSMesa context, clothlab_bench_egl (built beside it from
+// this file) an EGL one, and the run is handed to the other one when the choice asks for it. On
+// a machine without a GPU that is llvmpipe, Mesa's software rasteriser on the CPU, so it
+// measures the shader path, not a GPU.
 // Both run the default cloth (two pinned corners, ground) for N x N particles.
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cloth_parallel.hpp"
 #include "gl.hpp"
 #include "gl_context.hpp"
 #include "gpu_cloth.hpp"
 #include "gpu_cloth_compute.hpp"
+#include "program_choice.hpp"
 #include "spring_mesh.hpp"
 
 namespace {
@@ -147,4 +153,42 @@ BENCHMARK(gpu_compute_step)
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
 
-BENCHMARK_MAIN();
+// --gl auto|egl|osmesa (default auto), taken off the arguments before Google Benchmark reads
+// them; the run goes on here or in the program of the other context.
+int main(int argc, char** argv) {
+  std::string gl = "auto";
+  std::vector<std::string> others;
+  for (int i = 0; i < argc; ++i) {
+    const std::string argument = argv[i];
+    if (argument.rfind("--gl=", 0) == 0) {
+      gl = argument.substr(5);
+    } else if (argument == "--gl" && i + 1 < argc) {
+      gl = argv[++i];
+    } else {
+      others.push_back(argument);
+    }
+  }
+  if (gl != "auto" && gl != "egl" && gl != "osmesa") {
+    std::fprintf(stderr, "clothlab_bench: --gl %s: must be auto, egl or osmesa\n", gl.c_str());
+    return 2;
+  }
+#if defined(CLOTHLAB_GL_EGL)
+  if (gl == "osmesa" || (gl == "auto" && !clothlab::egl_hardware_device_available()))
+    return clothlab::hand_over_to("clothlab_bench", "clothlab_bench", others);
+#else
+  if (gl == "egl" || (gl == "auto" && clothlab::gpu_device_node_present())) {
+    others.push_back("--gl=egl");
+    return clothlab::hand_over_to("clothlab_bench", "clothlab_bench_egl", others);
+  }
+#endif
+  std::vector<char*> arguments;
+  for (std::string& argument : others)
+    arguments.push_back(argument.data());
+  int count = static_cast<int>(arguments.size());
+  benchmark::Initialize(&count, arguments.data());
+  if (benchmark::ReportUnrecognizedArguments(count, arguments.data()))
+    return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -4,18 +4,12 @@
 // removed from the spring mask, for the rest of the run, when the new positions stretch it beyond
 // (1 + E) L0, as in gpu_tear.frag. Each invocation reads and writes its own mask word only.
 layout(local_size_x = 8, local_size_y = 8) in;
+#include "gpu_cloth_common.glsl"  // the neighbours and the tearing rule
 
 layout(std430, binding = 0) readonly buffer position_in { vec4 position[]; };  // after the step
 layout(std430, binding = 6) buffer spring_mask_words { uint spring_mask[]; };  // bit i: joined
 
-uniform int grid_size;     // N
-uniform vec3 tear_length;  // (1 + E) L0 (m) of the structural, shear and bending springs
-
-// The neighbours of gpu_compute_step.comp, in the same order (the mask's bits): (du, dv, family).
-const ivec3 neighbours[12] = ivec3[12](
-    ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0),
-    ivec3(1, 1, 1), ivec3(-1, -1, 1), ivec3(1, -1, 1), ivec3(-1, 1, 1),
-    ivec3(2, 0, 2), ivec3(-2, 0, 2), ivec3(0, 2, 2), ivec3(0, -2, 2));
+uniform int grid_size;  // N
 
 int index_of(ivec2 k) { return k.x + grid_size * k.y; }
 
@@ -25,10 +19,10 @@ void main() {
   int here = index_of(k);
   uint mask = spring_mask[here];
   vec3 p = position[here].xyz;
-  for (int bit = 0; bit < 12; ++bit) {
+  for (int bit = 0; bit < neighbour_count; ++bit) {
     if ((mask & (1u << bit)) == 0u) continue;  // no spring there (border), or torn already
     vec3 p_other = position[index_of(k + neighbours[bit].xy)].xyz;
-    if (length(p - p_other) > tear_length[neighbours[bit].z]) mask &= ~(1u << bit);
+    if (overstretched(p, p_other, neighbours[bit].z)) mask &= ~(1u << bit);
   }
   spring_mask[here] = mask;
 }

@@ -1,5 +1,6 @@
 #include "headless.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -7,11 +8,15 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <csignal>
+#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <mutex>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -23,6 +28,7 @@
 #include "gpu_cloth.hpp"
 #include "gpu_cloth_compute.hpp"
 #include "renderer.hpp"
+#include "shader.hpp"
 #include "stability.hpp"
 #include "sweep.hpp"
 
@@ -37,30 +43,30 @@ constexpr int exit_diverged = 3;
 constexpr long max_sweep_steps_per_cell = 10'000'000;
 constexpr double max_sweep_steps = 1e9;            // summed over the cells
 constexpr double max_sweep_particle_steps = 1e10;  // steps times moving and fixed particles
+// A cell's set-up (its cloth built, its stability limit estimated) counts as this many steps of
+// its particles: measured 7 at N = 1024 (docs/limits.md), rounded up.
+constexpr long cell_setup_steps = 10;
 
-// SIGINT, SIGTERM, SIGHUP (issue 12): the handler only records the signal; the step loop sees
-// it after the step in progress, writes nothing more, closes the files (whole lines, renamed
-// into place) and exits with 128 + the signal's number (130, 143, 129). A second signal while
-// the first is being handled ends the program at once, as without the handler.
-volatile std::sig_atomic_t stop_signal = 0;
+// SIGINT, SIGTERM, SIGHUP (issues 12 and 22): the handler only records the first signal; the
+// step loop sees it after the step in progress, writes nothing more, closes the files (whole
+// lines, renamed into place) and exits with 128 + the signal's number (130, 143, 129). A step
+// that does not end within stop_grace of the signal is abandoned (stop_watchdog below). A
+// second signal changes nothing: timeout(1) sends two, and the first already ends the run.
+// (A lock-free atomic: written by the handler, read by the step loop and the watchdog's thread.)
+std::atomic<int> stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 
 extern "C" void on_stop_signal(int signal_number) {
-  if (stop_signal != 0) {
-    std::signal(signal_number, SIG_DFL);
-    std::raise(signal_number);
-    return;
-  }
-  stop_signal = signal_number;
+  int none = 0;
+  stop_signal.compare_exchange_strong(none, signal_number);
 }
 
-void install_stop_handlers() {
-  struct sigaction action {};
-  action.sa_handler = on_stop_signal;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESTART;
-  for (int signal_number : {SIGINT, SIGTERM, SIGHUP})
-    sigaction(signal_number, &action, nullptr);
-}
+constexpr int stop_signals[] = {SIGINT, SIGTERM, SIGHUP};
+
+// How long after a stop signal the step in progress (or a sweep's cells) may go on before the
+// run ends without it, and how long the watchdog then waits for a write in progress: the run
+// ends within a second of the signal (docs/limits.md).
+constexpr std::chrono::milliseconds stop_grace{300};
 
 const char* signal_name(int signal_number) {
   switch (signal_number) {
@@ -72,6 +78,17 @@ const char* signal_name(int signal_number) {
       return "SIGHUP";
   }
   return "a signal";
+}
+
+// One line on standard error, "clothlab: " and the text, its control characters escaped (a
+// file name may hold a newline).
+[[gnu::format(printf, 1, 2)]] void report(const char* format, ...) {
+  char text[2048];
+  std::va_list arguments;
+  va_start(arguments, format);
+  std::vsnprintf(text, sizeof text, format, arguments);
+  va_end(arguments);
+  std::fprintf(stderr, "clothlab: %s\n", one_line(text).c_str());
 }
 
 // A progress line on standard error for long runs, on a terminal only (nothing in a pipe or a
@@ -167,12 +184,16 @@ class run_outputs {
     return true;
   }
 
-  // Writes step `step` when it is one of the steps written. False, writing nothing, when a
-  // number to write is not finite: `reason` says which.
+  enum class recorded { yes, not_finite, interrupted };
+
+  // Writes step `step` when it is one of the steps written. Writes nothing and says why
+  // (`reason`) when a number to write is not finite. A stop signal while a large step is being
+  // written (1M lines at N = 1024 take a second and a half) takes its lines back out: the
+  // CSV then ends with the step before.
   template <class Stage>
-  bool record(long step, double time_step, const Stage& stage, std::string& reason) {
+  recorded record(long step, double time_step, const Stage& stage, std::string& reason) {
     if (step % o_.csv_every != 0 && step != o_.steps)
-      return true;
+      return recorded::yes;
     const double t = double(step) * time_step;  // t = s dt (model.md)
     energy_breakdown energy;
     if (energies_.is_open()) {
@@ -186,18 +207,32 @@ class run_outputs {
           char text[96];
           std::snprintf(text, sizeof text, "the %s energy %g J is not finite", name, value);
           reason = text;
-          return false;
+          return recorded::not_finite;
         }
       }
     }
-    if (states_)
-      write_csv_step(states_.get(), step, t, stage.particles());
+    if (states_) {
+      constexpr std::size_t rows_between_checks = 16384;
+      const std::size_t count = stage.particles().size();
+      const long start = std::ftell(states_.get());
+      for (std::size_t first = 0; first < count; first += rows_between_checks) {
+        if (first > 0 && stop_signal != 0 && start >= 0) {
+          std::fflush(states_.get());
+          if (::ftruncate(::fileno(states_.get()), start) == 0 &&
+              std::fseek(states_.get(), start, SEEK_SET) == 0)
+            return recorded::interrupted;
+        }
+        write_csv_rows(states_.get(), step, t, stage.particles(), first,
+                       std::min(count, first + rows_between_checks));
+      }
+    }
     if (energies_.is_open())
       write_energy_csv_row(energies_, step, t, energy);
-    return true;
+    return recorded::yes;
   }
 
-  // The OBJ of the final cloth (its normals computed); false with a message.
+  // The OBJ of the final cloth (its normals computed), into its temporary file; false with a
+  // message. It is put in place by close().
   bool write_obj_file(const spring_mesh& cloth, std::string& error) {
     if (o_.obj_path.empty())
       return true;
@@ -210,24 +245,25 @@ class run_outputs {
       obj_file_.discard();
       return false;
     }
-    return commit(obj_file_, "--obj", error);
+    return true;
   }
 
   // Where the PNG writer writes, and the check of what it wrote: stb's writer does not report
-  // a failed write, so the file is read back and must be a whole PNG.
+  // a failed write, so the file is read back and must be a whole PNG. Put in place by close().
   const std::string& png_write_path() const { return png_file_.write_path(); }
-  bool commit_png(std::string& error) {
+  bool check_png(std::string& error) {
     if (!png_file_is_whole(png_file_.write_path())) {
       error = "--png " + o_.png_path + ": error while writing (the image is incomplete)";
       png_file_.discard();
       return false;
     }
-    return commit(png_file_, "--png", error);
+    return true;
   }
 
-  // Closes the CSVs and renames them into place (keep), or removes them (!keep). False with a
-  // message naming the file when a write, the flush or the close failed: the file is removed.
-  bool close(bool keep, std::string& error) {
+  // Closes the CSVs and puts them in place (keep_csvs), then the OBJ and the PNG (keep_images);
+  // what is not kept is removed. False with a message naming the file when a write, the flush,
+  // the close or the rename failed: that file is removed.
+  bool close(bool keep_csvs, bool keep_images, std::string& error) {
     bool ok = true;
     if (states_) {
       bool written = std::ferror(states_.get()) == 0;
@@ -239,23 +275,42 @@ class run_outputs {
       }
     }
     if (energies_.is_open()) {
+      errno = 0;
       energies_.close();
       if (!energies_) {
-        error = "--energy-csv " + o_.energy_csv_path + ": error while writing";
+        error = "--energy-csv " + o_.energy_csv_path + ": error while writing" +
+                (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string());
         energy_file_.discard();
         ok = false;
       }
     }
-    if (!keep || !ok) {
+    if (!keep_csvs || !ok) {
       csv_file_.discard();
       energy_file_.discard();
-      return ok;
+    } else {
+      if (!o_.csv_path.empty())
+        ok = commit(csv_file_, "--csv", error) && ok;
+      if (!o_.energy_csv_path.empty())
+        ok = commit(energy_file_, "--energy-csv", error) && ok;
     }
-    if (!o_.csv_path.empty())
-      ok = commit(csv_file_, "--csv", error) && ok;
-    if (!o_.energy_csv_path.empty())
-      ok = commit(energy_file_, "--energy-csv", error) && ok;
+    if (!keep_images || !ok) {
+      // Unlinked only: the step loop's thread may still read their names (stop_watchdog).
+      obj_file_.remove_temporary();
+      png_file_.remove_temporary();
+    } else {
+      if (!o_.obj_path.empty())
+        ok = commit(obj_file_, "--obj", error) && ok;
+      if (!o_.png_path.empty())
+        ok = commit(png_file_, "--png", error) && ok;
+    }
     return ok;
+  }
+
+  // Removes every temporary file, the streams left open (stop_watchdog, when a write holds
+  // them).
+  void discard() const {
+    for (const output_file* file : {&csv_file_, &energy_file_, &obj_file_, &png_file_})
+      file->remove_temporary();
   }
 
  private:
@@ -284,13 +339,23 @@ bool diverged(const options& o, const Stage& stage, long step, double time_step,
     return false;
   progress.clear();  // the message starts its own line
   const stability_estimate estimate = estimate_stability(stage);
-  std::fprintf(stderr,
-               "clothlab: the %s simulation diverged at step %ld (t = %g s): %s; dt omega_max = "
-               "%.3g (%s)\n",
-               std::string(stage_name(o.stage)).c_str(), step, double(step) * time_step,
-               status.reason.c_str(), time_step * estimate.omega_max, estimate.explanation.c_str());
+  report(
+      "the %s simulation diverged at step %ld (t = %g s): %s; dt omega_max = "
+      "%.3g (%s)",
+      std::string(stage_name(o.stage)).c_str(), step, double(step) * time_step,
+      status.reason.c_str(), time_step * estimate.omega_max, estimate.explanation.c_str());
   return true;
 }
+
+// What the step loop and the stop watchdog share: the outputs are written by one of them at a
+// time (the lock), and the watchdog leaves the run to the loop once the loop has seen the
+// signal or is putting the files in place (taken).
+struct stop_state {
+  std::timed_mutex outputs;
+  std::atomic<bool> taken{false};
+  std::atomic<long> last_step{-1};  // the last step checked and written
+};
+stop_state stopping;
 
 // What follows each step s (s = 0: the initial state): the divergence check, the output, the
 // progress line and the stop signals. 0 to go on, else the exit status.
@@ -299,21 +364,34 @@ int after_step(const options& o, const Stage& stage, long step, double time_step
                progress_line& progress) {
   if (diverged(o, stage, step, time_step, progress))
     return exit_diverged;
+  std::lock_guard lock(stopping.outputs);
   std::string reason;
-  if (!out.record(step, time_step, stage, reason)) {
+  const run_outputs::recorded written = out.record(step, time_step, stage, reason);
+  if (written == run_outputs::recorded::not_finite) {
     progress.clear();
-    std::fprintf(stderr, "clothlab: the %s simulation diverged at step %ld (t = %g s): %s\n",
-                 std::string(stage_name(o.stage)).c_str(), step, double(step) * time_step,
-                 reason.c_str());
+    report("the %s simulation diverged at step %ld (t = %g s): %s",
+           std::string(stage_name(o.stage)).c_str(), step, double(step) * time_step,
+           reason.c_str());
     return exit_diverged;
   }
+  if (written == run_outputs::recorded::interrupted) {
+    stopping.taken = true;
+    progress.clear();
+    report(
+        "interrupted by %s while step %ld of %ld was being written; the CSV files hold the "
+        "steps written before it",
+        signal_name(stop_signal), step, o.steps);
+    return 128 + stop_signal;
+  }
+  stopping.last_step = step;
   progress.update(step);
   if (stop_signal != 0) {
+    stopping.taken = true;
     progress.clear();
-    std::fprintf(stderr,
-                 "clothlab: interrupted by %s after step %ld of %ld (t = %g s); the CSV files "
-                 "hold the steps written up to it\n",
-                 signal_name(stop_signal), step, o.steps, double(step) * time_step);
+    report(
+        "interrupted by %s after step %ld of %ld (t = %g s); the CSV files hold the steps "
+        "written up to it",
+        signal_name(stop_signal), step, o.steps, double(step) * time_step);
     return 128 + stop_signal;
   }
   return 0;
@@ -326,16 +404,16 @@ int write_png(const options& o, run_outputs& out, Draw&& draw) {
   std::string error;
   renderer scene_renderer;
   if (!scene_renderer.init(error)) {
-    std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+    report("%s", error.c_str());
     return exit_failure;
   }
   draw(scene_renderer, camera::default_for(o.stage));
   if (!save_framebuffer_png(out.png_write_path(), o.width, o.height, error)) {
-    std::fprintf(stderr, "clothlab: --png %s: %s\n", o.png_path.c_str(), error.c_str());
+    report("--png %s: %s", o.png_path.c_str(), error.c_str());
     return exit_failure;
   }
-  if (!out.commit_png(error)) {
-    std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+  if (!out.check_png(error)) {
+    report("%s", error.c_str());
     return exit_failure;
   }
   return 0;
@@ -386,11 +464,11 @@ int run_batched(const options& o, spring_mesh& cloth, Path& path, run_outputs& o
     if (diverged_after != 0) {
       const long step = s + diverged_after;
       progress.clear();
-      std::fprintf(stderr,
-                   "clothlab: the cloth simulation diverged at step %ld (t = %g s): a particle's "
-                   "position or velocity is not finite, or its speed exceeds %g m/s (checked on "
-                   "the %s path)\n",
-                   step, double(step) * dt, speed_bound, path_name);
+      report(
+          "the cloth simulation diverged at step %ld (t = %g s): a particle's "
+          "position or velocity is not finite, or its speed exceeds %g m/s (checked on "
+          "the %s path)",
+          step, double(step) * dt, speed_bound, path_name);
       return exit_diverged;
     }
     s = next;
@@ -438,26 +516,25 @@ bool sweep_within_bounds(const options& o, const sweep_settings& settings) {
   for (double dt : settings.time_steps) {
     const long per_cell = sweep_steps_per_cell(settings.simulated_time, dt);
     if (per_cell > max_sweep_steps_per_cell) {
-      std::fprintf(stderr,
-                   "clothlab: %s: a cell of dt = %g s would take %.3g steps (%g s / dt), more "
-                   "than the limit %ld; choose a larger dt or a shorter --sweep-time\n",
-                   option.c_str(), dt, settings.simulated_time / dt, settings.simulated_time,
-                   max_sweep_steps_per_cell);
+      report(
+          "%s: a cell of dt = %g s would take %.3g steps (%g s / dt), more "
+          "than the limit %ld; choose a larger dt or a shorter --sweep-time",
+          option.c_str(), dt, settings.simulated_time / dt, settings.simulated_time,
+          max_sweep_steps_per_cell);
       return false;
     }
     for (int n : rows) {
       steps += double(per_cell);
-      particle_steps += double(per_cell) * particles_of_row(o.stage, n);
+      particle_steps += double(per_cell + cell_setup_steps) * particles_of_row(o.stage, n);
     }
   }
   const std::size_t cells = settings.time_steps.size() * rows.size();
   if (steps > max_sweep_steps || particle_steps > max_sweep_particle_steps) {
-    std::fprintf(stderr,
-                 "clothlab: %s: the sweep's %zu cells would take %.3g steps (%.3g particle "
-                 "steps), more than the limit %.3g (%.3g particle steps); choose fewer cells, a "
-                 "larger dt or a shorter --sweep-time\n",
-                 option.c_str(), cells, steps, particle_steps, max_sweep_steps,
-                 max_sweep_particle_steps);
+    report(
+        "%s: the sweep's %zu cells would take %.3g steps (%.3g particle steps, each cell's "
+        "set-up counted), more than the limit %.3g (%.3g particle steps); choose fewer cells, "
+        "a larger dt or a shorter --sweep-time",
+        option.c_str(), cells, steps, particle_steps, max_sweep_steps, max_sweep_particle_steps);
     return false;
   }
   return true;
@@ -512,56 +589,85 @@ int run_sweep_map(const options& o) {
   output_file file;
   std::string error;
   if (!file.open(o.sweep_path, output_file::writer::stream, error)) {
-    std::fprintf(stderr, "clothlab: --sweep %s: cannot write: %s\n", o.sweep_path.c_str(),
-                 error.c_str());
+    report("--sweep %s: cannot write: %s", o.sweep_path.c_str(), error.c_str());
     return exit_failure;
   }
   std::ofstream stream(file.write_path());
   if (!stream) {
-    std::fprintf(stderr, "clothlab: --sweep %s: cannot write: %s\n", o.sweep_path.c_str(),
-                 std::strerror(errno));
+    report("--sweep %s: cannot write: %s", o.sweep_path.c_str(), std::strerror(errno));
     return exit_failure;
   }
 
-  // The cells run on worker threads; this one shows the progress and passes a stop signal on
-  // as the sweep's cancel flag (the cells not yet run are left out of the CSV).
-  sweep_progress progress;
-  std::vector<sweep_cell> cells;
-  std::atomic<bool> finished{false};
-  std::thread worker([&] {
-    cells = run_sweep(settings, &progress);
-    finished = true;
+  // Writes the computed cells and puts the CSV in place; 0 or exit 1 after its message.
+  const auto write_cells = [&](const std::vector<sweep_cell>& done) {
+    write_sweep_csv(stream, done);
+    errno = 0;
+    stream.close();
+    if (!stream) {
+      report("--sweep %s: error while writing: %s", o.sweep_path.c_str(),
+             std::strerror(errno != 0 ? errno : EIO));
+      return exit_failure;
+    }
+    if (!file.commit(error)) {
+      report("--sweep %s: cannot write: %s", o.sweep_path.c_str(), error.c_str());
+      return exit_failure;
+    }
+    return 0;
+  };
+  const auto interrupted = [&](const std::vector<sweep_cell>& done) {
+    const long computed = std::count_if(done.begin(), done.end(),
+                                        [](const sweep_cell& cell) { return cell.computed; });
+    if (const int status = write_cells(done); status != 0)
+      return status;
+    report("interrupted by %s after %ld of %zu sweep cells; %s holds those cells",
+           signal_name(stop_signal), computed, done.size(), o.sweep_path.c_str());
+    return 128 + stop_signal;
+  };
+
+  // The cells run on worker threads (background_sweep); this one shows the progress and
+  // watches for a stop signal. A cell of a large cloth cannot stop at once (its set-up takes a
+  // second at N = 1024, and it checks the cancel flag every 16 steps): stop_grace after the
+  // signal the cells done so far are written and the process ends, the cells in progress lost.
+  background_sweep sweep;
+  std::atomic<bool> started{false};  // the cells made (their limits estimated) and running
+  std::string refused;  // what make_sweep_cells refused (the command line refuses it first)
+  std::thread starter([&] {
+    try {
+      sweep.start(settings);
+    } catch (const std::invalid_argument& e) {
+      refused = e.what();
+    }
+    started = true;
   });
   {
     const long total = long(settings.time_steps.size()) *
                        long(std::max(settings.stiffnesses.size(), settings.grid_sizes.size()));
     progress_line line("sweep cell", total, 1);
-    while (!finished.load()) {
-      if (stop_signal != 0)
-        progress.cancel = true;
-      line.update(progress.cells_done.load());
+    std::chrono::steady_clock::time_point deadline{};
+    while (!started.load() || sweep.running()) {
+      if (stop_signal != 0 && deadline == std::chrono::steady_clock::time_point{})
+        deadline = std::chrono::steady_clock::now() + stop_grace;
+      if (stop_signal != 0 && std::chrono::steady_clock::now() > deadline) {
+        line.clear();
+        const int status =
+            interrupted(started.load() ? sweep.snapshot() : std::vector<sweep_cell>{});
+        std::fflush(stderr);
+        std::_Exit(status);  // the workers are still in their cells
+      }
+      line.update(long(std::lround(sweep.fraction_done() * double(total))));
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
-    worker.join();
+    starter.join();
   }
-  write_sweep_csv(stream, cells);
-  stream.close();
-  if (!stream) {
-    std::fprintf(stderr, "clothlab: --sweep %s: error while writing\n", o.sweep_path.c_str());
-    return exit_failure;
+  if (!refused.empty()) {
+    report("--sweep %s: %s", o.sweep_path.c_str(), refused.c_str());
+    return exit_usage;  // the temporary file is removed with `file`
   }
-  if (!file.commit(error)) {
-    std::fprintf(stderr, "clothlab: --sweep %s: cannot write: %s\n", o.sweep_path.c_str(),
-                 error.c_str());
-    return exit_failure;
-  }
-  if (stop_signal != 0) {
-    std::fprintf(stderr,
-                 "clothlab: interrupted by %s after %d of %d sweep cells; %s holds those cells\n",
-                 signal_name(stop_signal), progress.cells_done.load(), progress.cells_total.load(),
-                 o.sweep_path.c_str());
-    return 128 + stop_signal;
-  }
+  const std::vector<sweep_cell> cells = sweep.snapshot();
+  if (stop_signal != 0)
+    return interrupted(cells);
+  if (const int status = write_cells(cells); status != 0)
+    return status;
 
   // The map on standard output: one row per K (or N), one column per dt; '.' stable,
   // 'X' diverged, and '|' where dt first passes the cell's theoretical limit.
@@ -625,7 +731,7 @@ int run_stage(const options& o, run_outputs& out) {
         case backend_kind::gpu: {
           gpu_cloth path;
           if (!path.load(cloth, error)) {
-            std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+            report("%s", error.c_str());
             return exit_failure;
           }
           status = run_batched(o, cloth, path, out, "gpu");
@@ -642,7 +748,7 @@ int run_stage(const options& o, run_outputs& out) {
         case backend_kind::gpu_compute: {
           gpu_cloth_compute path;
           if (!path.load(cloth, error)) {
-            std::fprintf(stderr, "clothlab: --backend gpu-compute: %s\n", error.c_str());
+            report("--backend gpu-compute: %s", error.c_str());
             return exit_failure;
           }
           status = run_batched(o, cloth, path, out, "gpu-compute");
@@ -653,7 +759,7 @@ int run_stage(const options& o, run_outputs& out) {
         return status;
       cloth.compute_normals();  // of the final positions
       if (!out.write_obj_file(cloth, error)) {
-        std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+        report("%s", error.c_str());
         return exit_failure;
       }
       return !drawn && !o.png_path.empty() ? write_cpu_png(o, out, cloth) : 0;
@@ -662,7 +768,160 @@ int run_stage(const options& o, run_outputs& out) {
   return exit_failure;
 }
 
+// Ends the run within a second of a stop signal whatever is in progress (issue 22): a step of
+// a large cloth (the implicit scheme at N = 1024 takes a second), a batch of GPU steps, the PNG.
+// stop_grace after the signal, if the step loop has not seen it, the watchdog takes the
+// outputs (waiting at most stop_grace more for a write in progress to let them go), puts the CSVs
+// in place with the steps written so far, removes the OBJ's and the PNG's temporary files, and ends
+// the process with 128 + the signal's number. The step in progress is lost.
+class stop_watchdog {
+ public:
+  stop_watchdog(const options& o, run_outputs& out)
+      : thread_([this, &o, &out] { watch(o, out); }) {}
+  stop_watchdog(const stop_watchdog&) = delete;
+  stop_watchdog& operator=(const stop_watchdog&) = delete;
+  ~stop_watchdog() {
+    {
+      std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  // Sleeps 10 ms, or less when the run ends; true when it has ended.
+  bool pause() {
+    std::unique_lock lock(mutex_);
+    return wake_.wait_for(lock, std::chrono::milliseconds(10), [this] { return done_; });
+  }
+
+  void watch(const options& o, run_outputs& out) {
+    while (stop_signal == 0 || stopping.taken) {
+      if (pause())
+        return;
+    }
+    const auto deadline = std::chrono::steady_clock::now() + stop_grace;
+    while (!stopping.taken && std::chrono::steady_clock::now() < deadline) {
+      if (pause())
+        return;
+    }
+    if (stopping.taken)
+      return;
+    std::unique_lock lock(stopping.outputs, std::defer_lock);
+    const bool locked = lock.try_lock_for(stop_grace);
+    if (locked && stopping.taken)
+      return;  // the loop got there first
+    const int signal_number = stop_signal;
+    const long step = stopping.last_step;
+    std::string error;
+    if (locked && step < 0) {  // still setting up: as if the run had not started
+      out.close(false, false, error);
+      report("interrupted by %s before the run's first step was written; nothing written",
+             signal_name(signal_number));
+    } else if (locked && out.close(true, false, error)) {
+      if (step == o.steps) {
+        report(
+            "interrupted by %s after the last step; the CSV files hold every step, the OBJ "
+            "and the PNG are not written",
+            signal_name(signal_number));
+      } else {
+        report(
+            "interrupted by %s after step %ld of %ld (the steps after it had not ended %ld ms "
+            "later); the CSV files hold the steps written up to it",
+            signal_name(signal_number), step, o.steps, long(stop_grace.count()));
+      }
+    } else {
+      if (locked)
+        report("%s", error.c_str());
+      report(
+          "interrupted by %s after step %ld of %ld; the files were being written and none "
+          "is kept",
+          signal_name(signal_number), step, o.steps);
+      out.discard();
+    }
+    std::fflush(stderr);
+    std::_Exit(128 + signal_number);
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+// The data files (shaders, the cloth's texture) that the run will read, each checked before
+// step 1 so that a missing one fails at once, before any output is opened (the files loaded by
+// gpu_cloth.cpp, gpu_cloth_compute.cpp and renderer.cpp). False with a message naming the
+// option that needs it.
+bool data_files_present(const options& o, std::string& error) {
+  std::vector<std::pair<std::string, std::string>> needed;  // (option, file)
+  const auto shaders = [&](const std::string& option, std::initializer_list<const char*> names) {
+    for (const char* name : names)
+      needed.emplace_back(option, shader_path(name).string());
+  };
+  if (o.stage == stage_kind::cloth && o.backend == backend_kind::gpu) {
+    shaders("--backend gpu", {"gpu_full_screen.vert", "gpu_step.frag", "gpu_normal.frag",
+                              "gpu_tear.frag", "gpu_check.frag"});
+  }
+  if (o.stage == stage_kind::cloth && o.backend == backend_kind::gpu_compute) {
+    shaders("--backend gpu-compute",
+            {"gpu_compute_step.comp", "gpu_compute_normal.comp", "gpu_compute_tear.comp"});
+  }
+  if (!o.png_path.empty()) {
+    const std::string option = "--png " + o.png_path;
+    shaders(option,
+            {"draw_background.vert", "draw_background.frag", "draw_ground.vert", "draw_ground.frag",
+             "draw_flat.vert", "draw_flat.frag", "draw_cloth.vert", "draw_lit.frag",
+             "draw_cloth_from_textures.vert", "draw_flat_from_texture.vert", "draw_spheres.vert",
+             "draw_blob_shadow.vert", "draw_blob_shadow.frag"});
+    needed.emplace_back(option, asset_path("cloth.png").string());
+  }
+  for (const auto& [option, file] : needed) {
+    if (std::ifstream(file).good())
+      continue;
+    error = option + ": cannot read " + file + ": " + std::strerror(errno) +
+            " (the data folder: CLOTHLAB_DATA_DIR, or the one found beside the program)";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+void install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  sigset_t handled;
+  sigemptyset(&handled);
+  for (int signal_number : stop_signals) {
+    struct sigaction before {};
+    sigaction(signal_number, nullptr, &before);
+    if (before.sa_handler == SIG_IGN)
+      continue;  // ignored by whoever started clothlab (nohup): it stays ignored
+    sigaction(signal_number, &action, nullptr);
+    sigaddset(&handled, signal_number);
+  }
+  // A signal blocked across exec (hand_over in main.cpp) arrives now, at its handler.
+  sigprocmask(SIG_UNBLOCK, &handled, nullptr);
+}
+
+void block_stop_signals(bool block) {
+  sigset_t set;
+  sigemptyset(&set);
+  for (int signal_number : stop_signals)
+    sigaddset(&set, signal_number);
+  sigprocmask(block ? SIG_BLOCK : SIG_UNBLOCK, &set, nullptr);
+}
+
+int interrupted_before_the_run() {
+  if (stop_signal == 0)
+    return 0;
+  report("interrupted by %s before the run started; nothing written", signal_name(stop_signal));
+  return 128 + stop_signal;
+}
 
 bool needs_opengl(const options& o) {
   return o.sweep_path.empty() && (o.backend == backend_kind::gpu ||
@@ -670,25 +929,33 @@ bool needs_opengl(const options& o) {
 }
 
 int run_headless(const options& o) {
-  install_stop_handlers();
+  if (const int status = interrupted_before_the_run(); status != 0)
+    return status;
+  std::string error;
+  if (!data_files_present(o, error)) {
+    report("%s", error.c_str());
+    return exit_failure;
+  }
   if (!o.sweep_path.empty())
     return run_sweep_map(o);
 
   run_outputs out(o);
-  std::string error;
   if (!out.open(error)) {
-    std::fprintf(stderr, "clothlab: %s\n", error.c_str());
-    out.close(false, error);
+    report("%s", error.c_str());
+    out.close(false, false, error);
     return exit_failure;
   }
+  stop_watchdog watchdog(o, out);
 
   // One off-screen context serves the GPU path and the PNG.
   std::unique_ptr<gl_context> context;
   if (needs_opengl(o)) {
     context = create_offscreen_context(o.width, o.height, error);
     if (!context) {
-      std::fprintf(stderr, "clothlab: no OpenGL context: %s\n", error.c_str());
-      out.close(false, error);
+      report("no OpenGL context: %s", error.c_str());
+      std::lock_guard lock(stopping.outputs);
+      stopping.taken = true;
+      out.close(false, false, error);
       return exit_failure;
     }
 #if defined(CLOTHLAB_GL_EGL)
@@ -700,17 +967,26 @@ int run_headless(const options& o) {
   }
 
   int status = run_stage(o, out);
+  // The files are put in place with the stop signals held back: a signal that comes from here
+  // on is too late to change what is written (docs/limits.md).
+  block_stop_signals(true);
+  std::lock_guard lock(stopping.outputs);
+  stopping.taken = true;
+  if (status == 0 && stop_signal != 0) {
+    report(
+        "interrupted by %s after the last step; the CSV files hold every step, the OBJ and "
+        "the PNG are not written",
+        signal_name(stop_signal));
+    status = 128 + stop_signal;
+  }
   // The CSVs are kept when the run got somewhere: done, diverged (every step before it),
-  // interrupted (every step up to it), or a later failure of the OBJ or the PNG.
-  if (!out.close(true, error)) {
-    std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+  // interrupted (every step up to it), or a later failure of the OBJ or the PNG; not when it
+  // failed before its first step was written (a GPU path that cannot load).
+  const bool started = stopping.last_step >= 0;
+  if (!out.close(started || status != exit_failure, status == 0, error)) {
+    report("%s", error.c_str());
     if (status == 0 || status == exit_diverged)
       status = exit_failure;
-  }
-  if (status == 0 && stop_signal != 0) {
-    std::fprintf(stderr, "clothlab: interrupted by %s after the last step; the files are whole\n",
-                 signal_name(stop_signal));
-    status = 128 + stop_signal;
   }
   return status;
 }

@@ -1,5 +1,7 @@
 #include "options.hpp"
 
+#include "contacts.hpp"
+
 #include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
 
@@ -150,8 +152,15 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
     }
     require_within(option, from, range);
     require_within(option, to, range);
+    // x_i = from (to / from)^(i / (count - 1)); through logarithms when to / from is not a
+    // finite positive double (1e-320:1 would make it infinite, 1:1e-320 zero).
+    const double ratio = to / from;
+    const bool ratio_finite = std::isfinite(ratio) && ratio > 0;
     for (int i = 0; i < int(count); ++i) {
-      values.push_back(from * std::pow(to / from, i / (count - 1)));
+      const double fraction = i / (count - 1);
+      values.push_back(ratio_finite
+                           ? from * std::pow(ratio, fraction)
+                           : std::exp(std::log(from) + fraction * (std::log(to) - std::log(from))));
     }
     values.front() = from;  // exactly, not within rounding of the bounds
     values.back() = to;
@@ -168,6 +177,27 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
 }
 
 }  // namespace
+
+std::string one_line(std::string_view text) {
+  std::string line;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      line += "\\n";
+    } else if (c == '\t') {
+      line += "\\t";
+    } else if (c == '\r') {
+      line += "\\r";
+    } else if (byte < 0x20 || byte == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      line += escaped;
+    } else {
+      line += c;
+    }
+  }
+  return line;
+}
 
 parse_result parse_command_line(int argc, const char* const* argv) {
   options o;
@@ -295,16 +325,21 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     app.exit(e);
     return {std::nullopt, 0};
   } catch (const CLI::ParseError& e) {
-    std::string message = e.what();
-    for (char& c : message) {
-      if (c == '\n')
-        c = ' ';
-    }
-    std::fprintf(stderr, "clothlab: %s (see --help)\n", message.c_str());
+    std::fprintf(stderr, "clothlab: %s (see --help)\n", one_line(e.what()).c_str());
     return {std::nullopt, 2};
   }
 
   try {
+    // An empty value is never meant: CLI11 would read '' as 0 for a number and an empty path
+    // means "no file" to the options below.
+    for (const CLI::Option* option : app.get_options()) {
+      if (option->count() == 0 || option->get_expected_min() == 0)
+        continue;  // not given, or a flag
+      for (const std::string& value : option->results()) {
+        if (value.empty())
+          throw usage_error{option->get_name() + " '': the value is empty"};
+      }
+    }
     for (auto& [name, entry] : numbers) {
       if (app.count(name) > 0)
         *entry.second = number_or_usage_error(name, entry.first, "expected a number");
@@ -403,8 +438,11 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       o.sweep_stiffnesses = parse_list("--sweep-K", sweep_k, stiffness_bounds);
     if (!sweep_n.empty()) {
       for (double n : parse_list("--sweep-N", sweep_n, grid_list_bounds)) {
-        require(n == std::floor(n) && n >= 1 && n <= max_grid_size, "--sweep-N", n,
-                "must be whole numbers between 1 and " + std::to_string(max_grid_size));
+        // The chain's n from 1, the cloth's N from 2 (a grid of one particle has no spring).
+        const int smallest = o.stage == stage_kind::cloth ? 2 : 1;
+        require(n == std::floor(n) && n >= smallest && n <= max_grid_size, "--sweep-N", n,
+                "must be whole numbers between " + std::to_string(smallest) + " and " +
+                    std::to_string(max_grid_size) + " for the " + chosen + " stage");
         o.sweep_grid_sizes.push_back(static_cast<int>(n));
       }
     }
@@ -601,8 +639,17 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       }
     }
   } catch (const usage_error& e) {
-    std::fprintf(stderr, "clothlab: %s\n", e.message.c_str());
+    std::fprintf(stderr, "clothlab: %s\n", one_line(e.message).c_str());
     return {std::nullopt, 2};
+  }
+  // Self-collision runs with d no larger than the shortest rest length h (docs/model.md): a
+  // larger D is accepted, clamped, and said so once by a headless run (the window's command
+  // line is parsed twice, by clothlab and by clothlab-window).
+  if (o.headless && o.cloth.self_collision_thickness > self_collision_distance(o.cloth)) {
+    std::fprintf(stderr,
+                 "clothlab: warning: --self-collision %g: clamped to the shortest rest length "
+                 "h = %g m (--size / (N - 1))\n",
+                 o.cloth.self_collision_thickness, self_collision_distance(o.cloth));
   }
   return {o, 0};
 }

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "coupled_springs.hpp"
@@ -54,5 +55,9 @@ struct parse_result {
 // naming the option and what is wrong. Options that every stage shares (--dt, --mu, --mass,
 // --gravity, --integrator) are set in all three parameter structs.
 parse_result parse_command_line(int argc, const char* const* argv);
+
+// The text with its control characters escaped (a newline as \n, others as \xHH), so that a
+// message that quotes a value stays one line.
+std::string one_line(std::string_view text);
 
 }  // namespace clothlab

@@ -515,7 +515,7 @@ void cloth_parallel::step(const cloth_parameters& given) {
 
   // After the contacts: self-collision, then tearing (docs/model.md).
   if (p.self_collision_thickness > 0.0)
-    apply_self_collision(p.self_collision_thickness);
+    apply_self_collision(self_collision_distance(p));
   if (p.tear_strain > 0.0)
     tear_springs(p.tear_strain);
 }

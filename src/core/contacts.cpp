@@ -30,6 +30,11 @@ void apply_sphere_contact(const sphere_parameters& sphere, double time_step,
   }
 }
 
+double self_collision_distance(const cloth_parameters& p) {
+  const double h = p.side_length / (p.grid_size - 1);
+  return std::min(p.self_collision_thickness, h);
+}
+
 namespace {
 
 // The cell of a position in a grid of cells of side d, hashed into `buckets` (a power of two).

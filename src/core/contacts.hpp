@@ -28,6 +28,13 @@ void apply_sphere_contact(const sphere_parameters& sphere, double time_step,
 // before the pass, are summed, then applied. The pairs are found with a uniform grid of cells of
 // side d (a spatial hash), so that the work stays linear in the number of particles. Keeps its
 // scratch arrays between calls: no allocation once the size is known.
+// The distance d that self-collision keeps between particles: the thickness asked for
+// (cloth_parameters::self_collision_thickness), clamped to the shortest rest length, the
+// structural h = side / (N - 1). A larger d would reach grid neighbours that the springs already
+// keep apart, and let one cell of the hash below hold a crowd of particles: the work per step
+// would grow as (d / h)^3 particles per cell (issue 22). Both CPU paths call apply() with it.
+double self_collision_distance(const cloth_parameters& p);
+
 class self_collision {
  public:
   // Returns the number of pairs closer than d.

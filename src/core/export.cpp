@@ -52,7 +52,12 @@ void write_csv_header(std::FILE* out) {
 }
 
 void write_csv_step(std::FILE* out, long step, double time, const particle_system& particles) {
-  for (std::size_t k = 0; k < particles.size(); ++k) {
+  write_csv_rows(out, step, time, particles, 0, particles.size());
+}
+
+void write_csv_rows(std::FILE* out, long step, double time, const particle_system& particles,
+                    std::size_t first, std::size_t last) {
+  for (std::size_t k = first; k < last; ++k) {
     const double* p = &particles.position[3 * k];
     const double* v = &particles.velocity[3 * k];
     std::fprintf(out, "%ld,%.17g,%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", step, time, k, p[0],
@@ -156,8 +161,20 @@ bool output_file::open(const std::string& target, writer kind, std::string& erro
     return true;
   const int saved = errno;
   temporary_.clear();
-  if (exists && (saved == EACCES || saved == EPERM || saved == EROFS) && kind == writer::stream) {
-    return true;  // the folder takes no new file but the file may be writable: write directly
+  if (exists && (saved == EACCES || saved == EPERM || saved == EROFS) &&
+      ::access(target.c_str(), W_OK) == 0) {
+    // The folder takes no new file but the file is writable: the same rule for every output.
+    if (kind == writer::stream)
+      return true;  // written directly
+    // A writer that needs a file name writes into the system's temporary folder, and commit()
+    // copies the whole file into the target.
+    temporary_ = (std::filesystem::temp_directory_path() / "clothlab-XXXXXX").string();
+    copy_into_target_ = true;
+    if (create_temporary(temporary_))
+      return true;
+    temporary_.clear();
+    error = std::strerror(errno);
+    return false;
   }
   error = std::strerror(saved);
   return false;
@@ -193,6 +210,11 @@ bool output_file::commit(std::string& error) {
   }
   discard();
   return ok;
+}
+
+void output_file::remove_temporary() const {
+  if (!temporary_.empty())
+    ::unlink(temporary_.c_str());
 }
 
 void output_file::discard() {

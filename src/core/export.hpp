@@ -15,6 +15,9 @@ namespace clothlab {
 void write_csv_header(std::FILE* out);
 // One line per particle, in index order, numbers as %.17g so that they read back exactly.
 void write_csv_step(std::FILE* out, long step, double time, const particle_system& particles);
+// The lines of particles first .. last - 1 only (a step written in parts).
+void write_csv_rows(std::FILE* out, long step, double time, const particle_system& particles,
+                    std::size_t first, std::size_t last);
 
 // The N x N cloth: positions, normals, texture coordinates (u = ku/(N-1), v = kv/(N-1)) and two
 // triangles per cell. A normal that is not a finite unit vector (a cell collapsed to a point)
@@ -60,6 +63,9 @@ class output_file {
   bool commit(std::string& error);
   // Removes the temporary file (the target is left as it was).
   void discard();
+  // Removes the temporary file but keeps its name (safe while another thread reads
+  // write_path()); discard() later does nothing more.
+  void remove_temporary() const;
 
  private:
   std::string target_;

@@ -104,11 +104,7 @@ void spring_mesh::load_model() {
   add_springs(spring_family::shear, shear_neighbours);
   add_springs(spring_family::bending, bending_neighbours);
   // Every spring is intact until it tears (tear_springs).
-  spring_intact_.assign(spring_slot(particles_.size(), -2, -2), 0);
-  for (const auto& family : springs_) {
-    for (const spring& s : family)
-      set_spring_intact(s, 1);
-  }
+  spring_torn_.assign(spring_slot(particles_.size(), -2, -2), 0);
 
   // Question 7: the two corners (0, 0) and (N-1, 0) never move.
   if (parameters.pins == pin_mode::corners) {
@@ -350,7 +346,7 @@ void spring_mesh::apply_constraints() {
   if (parameters.ground_enabled)  // question 9
     apply_ground_contact(parameters.ground_height, parameters.ground_friction, dt, particles_);
   if (parameters.self_collision_thickness > 0.0)
-    self_collision_.apply(grid_size_, parameters.self_collision_thickness, particles_);
+    self_collision_.apply(grid_size_, self_collision_distance(parameters), particles_);
   if (parameters.tear_strain > 0.0)
     tear_springs(parameters.tear_strain);
 }
@@ -362,12 +358,12 @@ std::size_t spring_mesh::tear_springs(double strain) {
   });
 }
 
-void spring_mesh::set_spring_intact(const spring& s, std::uint8_t intact) {
+void spring_mesh::set_spring_torn(const spring& s) {
   const int n = grid_size_;
   const int du = static_cast<int>(s.b % n) - static_cast<int>(s.a % n);
   const int dv = static_cast<int>(s.b / n) - static_cast<int>(s.a / n);
-  spring_intact_[spring_slot(s.a, du, dv)] = intact;
-  spring_intact_[spring_slot(s.b, -du, -dv)] = intact;
+  spring_torn_[spring_slot(s.a, du, dv)] = 1;
+  spring_torn_[spring_slot(s.b, -du, -dv)] = 1;
 }
 
 bool spring_mesh::spring_intact(int ku, int kv, int du, int dv) const {
@@ -381,7 +377,7 @@ bool spring_mesh::spring_intact(int ku, int kv, int du, int dv) const {
                             std::to_string(n) + " grid: no spring can join it to s(" +
                             std::to_string(ku) + ", " + std::to_string(kv) + ")");
   }
-  return spring_intact_[spring_slot(index(ku, kv, n), du, dv)] != 0;
+  return spring_torn_[spring_slot(index(ku, kv, n), du, dv)] == 0;
 }
 
 bool spring_mesh::triangle_intact(int ku, int kv, bool upper) const {
@@ -389,13 +385,13 @@ bool spring_mesh::triangle_intact(int ku, int kv, bool upper) const {
   const std::size_t k = index(ku, kv, n);
   // Lower (ku, kv), (ku+1, kv), (ku+1, kv+1); upper (ku, kv), (ku+1, kv+1), (ku, kv+1): both
   // share the shear diagonal (ku, kv)-(ku+1, kv+1).
-  const bool diagonal = spring_intact_[spring_slot(k, 1, 1)] != 0;
-  if (upper) {
-    return diagonal && spring_intact_[spring_slot(k, 0, 1)] != 0 &&
-           spring_intact_[spring_slot(index(ku, kv + 1, n), 1, 0)] != 0;
-  }
-  return diagonal && spring_intact_[spring_slot(k, 1, 0)] != 0 &&
-         spring_intact_[spring_slot(index(ku + 1, kv, n), 0, 1)] != 0;
+  const auto intact = [this](std::size_t a, int du, int dv) {
+    return spring_torn_[spring_slot(a, du, dv)] == 0;
+  };
+  const bool diagonal = intact(k, 1, 1);
+  if (upper)
+    return diagonal && intact(k, 0, 1) && intact(index(ku, kv + 1, n), 1, 0);
+  return diagonal && intact(k, 1, 0) && intact(index(ku + 1, kv, n), 0, 1);
 }
 
 void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal) {

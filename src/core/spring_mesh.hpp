@@ -80,7 +80,7 @@ class spring_mesh {
       const auto first_torn = std::stable_partition(
           list.begin(), list.end(), [&](const spring& s) { return !torn(family, s); });
       for (auto it = first_torn; it != list.end(); ++it)
-        set_spring_intact(*it, 0);
+        set_spring_torn(*it);
       removed += static_cast<std::size_t>(list.end() - first_torn);
       list.erase(first_torn, list.end());
     }
@@ -119,11 +119,12 @@ class spring_mesh {
   std::vector<double> normals_;                 // n, unit, 3k + c
   std::array<std::vector<spring>, 3> springs_;  // indexed by spring_family
   std::vector<double> rest_position_;           // x0, the initial positions, 3k + c
-  // 1 where a spring joins k to the vertex at (du, dv) from it, du, dv in [-2, 2], at
-  // spring_slot(k, du, dv); 0 where it tore or there is no such vertex.
-  std::vector<std::uint8_t> spring_intact_;
-  self_collision self_collision_;  // its scratch arrays, kept between steps
-  void set_spring_intact(const spring& s, std::uint8_t intact);  // both ends' slots
+  // 1 where the spring from vertex k to the vertex at (du, dv) from it (du, dv in [-2, 2]) has
+  // torn, at spring_slot(k, du, dv); 0 elsewhere, where there is no such spring too (which
+  // springs exist is question 8's to decide, and the spring lists').
+  std::vector<std::uint8_t> spring_torn_;
+  self_collision self_collision_;         // its scratch arrays, kept between steps
+  void set_spring_torn(const spring& s);  // both ends' slots
   static std::size_t spring_slot(std::size_t k, int du, int dv) {
     return 25 * k + static_cast<std::size_t>(5 * (dv + 2) + (du + 2));
   }

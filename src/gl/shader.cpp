@@ -24,6 +24,41 @@ bool read_text(const std::filesystem::path& path, std::string& text) {
   return true;
 }
 
+// Replaces each line `#include "FILE"` of a shader by FILE (from the shaders folder), so that
+// what the two GPU paths share is written once (gpu_cloth_common.glsl). The included lines are
+// numbered in source string 1 of the compiler's messages; a #line directive after them gives
+// the including file its own line numbers back. One level only: an included file includes none.
+bool expand_includes(const std::filesystem::path& path, std::string& source, std::string& error) {
+  std::istringstream lines(source);
+  std::ostringstream out;
+  int number = 0;
+  for (std::string line; std::getline(lines, line);) {
+    ++number;
+    const std::string directive = "#include \"";
+    const std::size_t end = line.find('"', directive.size());
+    if (line.rfind(directive, 0) != 0 || end == std::string::npos) {
+      out << line << '\n';
+      continue;
+    }
+    const std::string name = line.substr(directive.size(), end - directive.size());
+    const auto included = shader_path(name);
+    std::string text;
+    if (!read_text(included, text)) {
+      error =
+          included.string() + ": cannot read the shader file (included by " + path.string() + ")";
+      return false;
+    }
+    if (text.find("\n#include") != std::string::npos || text.rfind("#include", 0) == 0) {
+      error = included.string() + ": an included shader file includes another (one level only)";
+      return false;
+    }
+    out << "#line 1 1\n"
+        << text << (text.ends_with('\n') ? "" : "\n") << "#line " << number + 1 << " 0\n";
+  }
+  source = out.str();
+  return true;
+}
+
 // Compiles one stage; returns 0 and sets error on failure.
 GLuint compile(GLenum type, std::string_view file_name, std::string& error) {
   const auto path = shader_path(file_name);
@@ -32,6 +67,8 @@ GLuint compile(GLenum type, std::string_view file_name, std::string& error) {
     error = path.string() + ": cannot read the shader file";
     return 0;
   }
+  if (!expand_includes(path, source, error))
+    return 0;
   GLuint shader = glCreateShader(type);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);

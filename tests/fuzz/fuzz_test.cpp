@@ -1,10 +1,12 @@
-// A bounded random driver over clothlab's command line (issue 12). Starting from seeds (the
-// reproducers D1-D9 of issue 12 and a few ordinary runs) it mutates command lines, runs the
-// clothlab executable on each in an empty folder, and checks what shared/cli.md promises:
+// A bounded random driver over clothlab's command line (issues 12 and 22). Starting from seeds
+// (the reproducers D1-D9 of issue 12, those of issue 22, and a few ordinary runs) it mutates
+// command lines (values of every kind, and empty, newline-bearing and list-shaped ones for
+// every option), runs the clothlab executable on each in an empty folder, and checks what
+// docs/cli.md and docs/limits.md promise:
 //   - the exit status is 0, 1, 2 or 3 (143 only when the driver itself sent SIGTERM after the
 //     time limit), never a crash signal;
-//   - exit 2 prints exactly one line on standard error, nothing on standard output, and writes
-//     no file;
+//   - exit 2 prints exactly one line on standard error naming an option, nothing on standard
+//     output, and writes no file; exit 1 prints a message;
 //   - every file written holds only finite numbers and whole lines, and no temporary file is
 //     left behind.
 // Environment: CLOTHLAB_FUZZ_ITERATIONS (default 300), CLOTHLAB_FUZZ_SECONDS (wall-clock budget,
@@ -62,6 +64,30 @@ const std::vector<arguments> seeds = {
     {"--stage", "coupled", "--sweep", "s.csv", "--sweep-N", "1,2,3", "--sweep-dt", "0.01,0.1",
      "--sweep-time", "0.05"},
     {"--N", "3", "--steps", "2", "--png", "p.png", "--width", "16", "--height", "16"},
+    // Issue 22's reproducers.
+    {"--sweep", "s.csv", "--sweep-N", "1"},  // an uncaught exception, exit 134
+    {"--sweep", "s.csv", "--sweep-N", "1:3:3"},
+    {"--N", "200", "--self-collision", "0.436", "--steps", "2", "--csv-every", "2", "--csv",
+     "c.csv"},  // 38 s a step before D was clamped to h
+    {"--steps", ""},
+    {"--N", ""},
+    {"--csv", ""},
+    {"--energy-csv", ""},
+    {"--obj", ""},
+    {"--png", ""},
+    {"--sweep", ""},
+    {"--dt", "0.01\n0.02"},
+    {"--stage", "spring\ncloth"},
+    {"--N", "3", "--steps", "1", "--csv", "a\nb.csv"},
+    {"--stage", "spring", "--sweep", "s.csv", "--sweep-K", "1e-320:1:3", "--sweep-dt", "0.01",
+     "--sweep-time", "0.05"},
+    {"--stage", "spring", "--sweep", "s.csv", "--sweep-K", "1:1e-320:3", "--sweep-dt", "0.01",
+     "--sweep-time", "0.05"},
+    {"--stage", "spring", "--sweep", "s.csv", "--sweep-K", "0x1p-1074:1:2", "--sweep-dt", "0.01",
+     "--sweep-time", "0.05"},
+    {"--N", "3", "--steps", "1", "--energy-csv", "/dev/full"},
+    {"--stage", "spring", "--sweep", "/dev/full", "--sweep-dt", "0.01", "--sweep-K", "1"},
+    {"--sweep", "s.csv", "--sweep-N", "1024:1024:200", "--sweep-time", "0.001"},
 };
 
 const std::vector<std::string> options = {"--stage",
@@ -97,7 +123,15 @@ const std::vector<std::string> options = {"--stage",
                                           "--width",
                                           "--height",
                                           "--png",
-                                          "--backend"};
+                                          "--backend",
+                                          "--threads",
+                                          "--gl",
+                                          "--drag",
+                                          "--drag-stiffness",
+                                          "--sphere",
+                                          "--sphere-friction",
+                                          "--self-collision",
+                                          "--tear-strain"};
 
 const std::vector<std::string> values = {"0",
                                          "-0",
@@ -166,10 +200,34 @@ const T& pick(const std::vector<T>& list, std::mt19937& random) {
   return list[std::uniform_int_distribution<std::size_t>(0, list.size() - 1)(random)];
 }
 
+// Issue 22: the edges of a value: empty, with a newline or another control character, or
+// shaped like a list (of any of the values, with a stray separator) whatever the option.
+std::string edge_value(std::mt19937& random) {
+  const std::string a = pick(values, random), b = pick(values, random);
+  switch (std::uniform_int_distribution<int>(0, 7)(random)) {
+    case 0:
+      return "";
+    case 1:
+      return a + "\n" + b;
+    case 2:
+      return "\n";
+    case 3:
+      return a + "," + b + "," + pick(values, random);
+    case 4:
+      return a + ":" + b + ":" + pick(values, random);
+    case 5:
+      return a + (std::uniform_int_distribution<int>(0, 1)(random) == 0 ? "," : ":");
+    case 6:
+      return a + "\t" + b + "\r";
+    default:
+      return "," + a;
+  }
+}
+
 arguments mutate(arguments args, std::mt19937& random) {
   const int count = std::uniform_int_distribution<int>(1, 3)(random);
   for (int m = 0; m < count; ++m) {
-    const int kind = std::uniform_int_distribution<int>(0, 5)(random);
+    const int kind = std::uniform_int_distribution<int>(0, 7)(random);
     const std::size_t at =
         args.empty() ? 0 : std::uniform_int_distribution<std::size_t>(0, args.size() - 1)(random);
     switch (kind) {
@@ -196,6 +254,14 @@ arguments mutate(arguments args, std::mt19937& random) {
         if (at + 1 < args.size() && args[at].rfind("--", 0) == 0)
           args[at + 1] = number_like(random);
         break;
+      case 6:  // any option with an edge value: empty, a newline, a list
+        args.insert(args.begin() + static_cast<long>(std::min(at, args.size())),
+                    {pick(options, random), edge_value(random)});
+        break;
+      case 7:  // a value of a seed's option replaced by an edge value
+        if (at + 1 < args.size() && args[at].rfind("--", 0) == 0)
+          args[at + 1] = edge_value(random);
+        break;
     }
   }
   // Keep every run short: a valid count that asks for much work is cut down (an invalid one is
@@ -217,6 +283,7 @@ arguments mutate(arguments args, std::mt19937& random) {
     cap("--width", 64, 8192, "64");
     cap("--height", 64, 8192, "64");
     cap("--sweep-time", 0.05, 1000, "0.05");
+    cap("--threads", 4, 256, "4");
   }
   args.insert(args.begin(), "--headless");
   return args;
@@ -287,8 +354,14 @@ outcome run(const arguments& args, const fs::path& work, const fs::path& logs,
 
 std::string join(const arguments& args) {
   std::string line = "clothlab";
-  for (const std::string& a : args)
-    line += " '" + a + "'";
+  for (const std::string& a : args) {
+    std::string quoted;  // shell quoting, a newline as $'\n'
+    for (char c : a)
+      quoted += c == '\n'   ? std::string("'$'\\n''")
+                : c == '\'' ? std::string("'\\''")
+                            : std::string(1, c);
+    line += " '" + quoted + "'";
+  }
   return line;
 }
 
@@ -363,12 +436,16 @@ int main() {
         problem = "SIGTERM after the time limit gave exit " + std::to_string(code);
     } else if (code < 0 || code > 3) {
       problem = "exit status " + std::to_string(code);
+    } else if (code == 1 && result.err.empty()) {
+      problem = "exit 1 without a message";
     } else if (code == 2) {
       const auto lines = std::count(result.err.begin(), result.err.end(), '\n');
       if (lines != 1 || result.err.back() != '\n')
         problem = "exit 2 with " + std::to_string(lines) + " lines on stderr";
       else if (!result.out.empty())
         problem = "exit 2 with standard output";
+      else if (result.err.find("--") == std::string::npos)
+        problem = "exit 2 without naming an option";
       else if (!fs::is_empty(work))
         problem = "exit 2 wrote " + fs::directory_iterator(work)->path().filename().string();
     }

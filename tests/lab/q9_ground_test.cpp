@@ -1,6 +1,6 @@
-// Question 9: the plane z = z_g, on the CPU (apply_ground_contact) and on the GPU
-// (shaders/gpu_step.frag). After the integrator, a vertex below it is put back on it, stops
-// falling, and slides with its tangential velocity damped by fluid friction,
+// Question 9: the plane z = z_g, on the CPU (apply_ground_contact) and on the GPU (ground_contact
+// in shaders/gpu_cloth_common.glsl). After the integrator, a vertex below it is put back on it,
+// stops falling, and slides with its tangential velocity damped by fluid friction,
 // (v_x, v_y) *= (1 - mu_g dt).
 #include <gtest/gtest.h>
 
