@@ -12,6 +12,7 @@ packages=(
   libopengl-dev libegl-mesa0
   libcli11-dev libgtest-dev libbenchmark-dev
   libgl1-mesa-dri xvfb xauth xdotool imagemagick
+  bubblewrap  # the grader's sandbox: tests without network, on a read-only file system
 )
 
 missing=()

@@ -45,7 +45,9 @@ def lab_states():
     return states
 TEACHER_FILES = ["docs/answers.md", "docs/teaching.md", "scripts/make-student-version",
                  "tests/student_copy", "tests/model", "shaders/gpu_compute_step.comp",
-                 "scripts/mutate-grader", "tests/mutation"]
+                 "scripts/mutate-grader", "tests/mutation", "scripts/grade",
+                 "scripts/grade-benchmark", "docs/images/grade-report.png", "tests/grade",
+                 "grading"]
 problems = []
 
 
