@@ -1499,12 +1499,29 @@ TEST_F(cli, ReadOnlyFolderWritesEveryExistingWritableOutput) {
     std::ofstream(work() / name) << "old\n";
     fs::permissions(work() / name, fs::perms(0666));
   }
+  // nobody runs a copy of the program and of its data files in this test's folder: the build
+  // tree may lie where nobody cannot reach it (a home, or a folder made by mkdtemp, is 0700).
+  const fs::path source =
+      fs::path(clothlab_test::render_reference_directory).parent_path().parent_path().parent_path();
+  const fs::path program = root() / "bin" / "clothlab";
+  fs::create_directories(program.parent_path());
+  fs::create_directories(root() / "data");
+  fs::copy_file(clothlab_test::executable_path, program, fs::copy_options::overwrite_existing);
+  fs::copy(source / "shaders", root() / "data" / "shaders", fs::copy_options::recursive);
+  fs::copy(source / "assets", root() / "data" / "assets", fs::copy_options::recursive);
+  for (const fs::path& tree : {root() / "bin", root() / "data"}) {
+    fs::permissions(tree, fs::perms(0755), fs::perm_options::add);
+    for (const fs::path& path : fs::recursive_directory_iterator(tree))
+      fs::permissions(path, fs::perms(0755), fs::perm_options::add);
+  }
   fs::permissions(work(), fs::perms(0555));
   fs::permissions(root(), fs::perms(0777));
-  spawn_settings how{clothlab_command({"--headless", "--N", "4", "--steps", "2", "--csv", "s.csv",
-                                       "--energy-csv", "e.csv", "--obj", "c.obj", "--png", "c.png",
-                                       "--width", "16", "--height", "16"}),
+  spawn_settings how{{program.string(), "--headless", "--gl",  "osmesa", "--N",          "4",
+                      "--steps",        "2",          "--csv", "s.csv",  "--energy-csv", "e.csv",
+                      "--obj",          "c.obj",      "--png", "c.png",  "--width",      "16",
+                      "--height",       "16"},
                      work()};
+  how.environment = {"CLOTHLAB_DATA_DIR=" + (root() / "data").string()};
   how.user = 65534;  // nobody
   const ended result = wait_for(spawn(how), work());
   fs::permissions(work(), fs::perms(0755));
