@@ -21,12 +21,10 @@
 #include <thread>
 #include <vector>
 
-#include "cloth_parallel.hpp"
+#include "cloth_paths.hpp"
 #include "energy.hpp"
 #include "export.hpp"
 #include "gl_context.hpp"
-#include "gpu_cloth.hpp"
-#include "gpu_cloth_compute.hpp"
 #include "renderer.hpp"
 #include "shader.hpp"
 #include "stability.hpp"
@@ -441,17 +439,16 @@ int run_cpu(const options& o, Stage& stage, run_outputs& out, double time_step) 
   return 0;
 }
 
-// The cloth's other paths (cpu-parallel, gpu, gpu-compute): the state stays on the path and is
-// read back into the CPU cloth only at the steps whose rows are written (--csv, --energy-csv:
-// every --csv-every steps) and at the last one. Every step is checked for divergence on the
-// path itself (path.run), so that exit 3 still names the step. Batches end at those steps, and
-// at least every max_batch steps for the progress line and the stop signals.
-template <class Path>
-int run_batched(const options& o, spring_mesh& cloth, Path& path, run_outputs& out,
-                const char* path_name) {
+// The cloth's other paths (cpu-parallel, gpu, gpu-compute), loaded in `paths`: the state stays
+// on the path and is read back into the CPU cloth only at the steps whose rows are written
+// (--csv, --energy-csv: every --csv-every steps) and at the last one. Every step is checked for
+// divergence on the path itself (cloth_paths::run), so that exit 3 still names the step. Batches
+// end at those steps, and at least every max_batch steps for the progress line and the stop
+// signals.
+int run_batched(const options& o, cloth_paths& paths, run_outputs& out) {
   constexpr long max_batch = 256;
+  const spring_mesh& cloth = paths.cloth;
   const double dt = cloth.parameters.dynamics.time_step;
-  const double speed_bound = divergence_speed_bound(cloth);
   const bool rows = !o.csv_path.empty() || !o.energy_csv_path.empty();
   progress_line progress("step", o.steps, clock_stride(cloth.particles().size()));
   if (const int status = after_step(o, cloth, 0, dt, out, progress); status != 0)
@@ -460,7 +457,7 @@ int run_batched(const options& o, spring_mesh& cloth, Path& path, run_outputs& o
     long next = std::min(o.steps, s + max_batch);
     if (rows)
       next = std::min(next, (s / o.csv_every + 1) * o.csv_every);
-    const int diverged_after = path.run(cloth.parameters, static_cast<int>(next - s), speed_bound);
+    const int diverged_after = paths.run(static_cast<int>(next - s));
     if (diverged_after != 0) {
       const long step = s + diverged_after;
       progress.clear();
@@ -468,12 +465,12 @@ int run_batched(const options& o, spring_mesh& cloth, Path& path, run_outputs& o
           "the cloth simulation diverged at step %ld (t = %g s): a particle's "
           "position or velocity is not finite, or its speed exceeds %g m/s (checked on "
           "the %s path)",
-          step, double(step) * dt, speed_bound, path_name);
+          step, double(step) * dt, paths.speed_bound(), backend_option(paths.backend()));
       return exit_diverged;
     }
     s = next;
     if (s == o.steps || (rows && s % o.csv_every == 0))
-      path.read_state(cloth);
+      paths.read_state();
     if (const int status = after_step(o, cloth, s, dt, out, progress); status != 0)
       return status;
   }
@@ -714,46 +711,29 @@ int run_stage(const options& o, run_outputs& out) {
       return status == 0 && !o.png_path.empty() ? write_cpu_png(o, out, stage) : status;
     }
     case stage_kind::cloth: {
-      spring_mesh cloth(o.cloth);
+      cloth_paths paths(o.cloth, o.threads);
+      spring_mesh& cloth = paths.cloth;
       std::string error;
       int status = 0;
-      bool drawn = false;  // the fragment path draws its PNG from its own textures
-      switch (o.backend) {
-        case backend_kind::cpu:
-          status = run_cpu(o, cloth, out, o.cloth.dynamics.time_step);
-          break;
-        case backend_kind::cpu_parallel: {
-          cloth_parallel path(o.threads);
-          path.load(cloth);
-          status = run_batched(o, cloth, path, out, "cpu-parallel");
-          break;
-        }
-        case backend_kind::gpu: {
-          gpu_cloth path;
-          if (!path.load(cloth, error)) {
-            report("%s", error.c_str());
-            return exit_failure;
-          }
-          status = run_batched(o, cloth, path, out, "gpu");
-          if (status == 0 && !o.png_path.empty()) {
-            drawn = true;
-            status = write_png(o, out, [&](renderer& r, const camera& view) {
-              r.draw_from_textures(path.position_texture(), path.normal_texture(), cloth, view,
-                                   render_settings{}, o.width, o.height, 0,
-                                   path.spring_mask_texture());
-            });
-          }
-          break;
-        }
-        case backend_kind::gpu_compute: {
-          gpu_cloth_compute path;
-          if (!path.load(cloth, error)) {
-            report("--backend gpu-compute: %s", error.c_str());
-            return exit_failure;
-          }
-          status = run_batched(o, cloth, path, out, "gpu-compute");
-          break;
-        }
+      if (o.backend == cloth_backend::cpu) {
+        status = run_cpu(o, cloth, out, o.cloth.dynamics.time_step);
+      } else if (!paths.load(o.backend, error)) {
+        if (o.backend == cloth_backend::gpu_compute)
+          report("--backend gpu-compute: %s", error.c_str());
+        else
+          report("%s", error.c_str());
+        return exit_failure;
+      } else {
+        status = run_batched(o, paths, out);
+      }
+      // The fragment path draws its PNG from its own textures; the others from the CPU cloth.
+      const bool drawn = status == 0 && o.backend == cloth_backend::gpu && !o.png_path.empty();
+      if (drawn) {
+        status = write_png(o, out, [&](renderer& r, const camera& view) {
+          const cloth_textures textures = paths.textures();
+          r.draw_from_textures(textures.position, textures.normal, cloth, view, render_settings{},
+                               o.width, o.height, 0, textures.spring_mask);
+        });
       }
       if (status != 0)
         return status;
@@ -860,11 +840,11 @@ bool data_files_present(const options& o, std::string& error) {
     for (const char* name : names)
       needed.emplace_back(option, shader_path(name).string());
   };
-  if (o.stage == stage_kind::cloth && o.backend == backend_kind::gpu) {
+  if (o.stage == stage_kind::cloth && o.backend == cloth_backend::gpu) {
     shaders("--backend gpu", {"gpu_full_screen.vert", "gpu_step.frag", "gpu_normal.frag",
                               "gpu_tear.frag", "gpu_check.frag"});
   }
-  if (o.stage == stage_kind::cloth && o.backend == backend_kind::gpu_compute) {
+  if (o.stage == stage_kind::cloth && o.backend == cloth_backend::gpu_compute) {
     shaders("--backend gpu-compute",
             {"gpu_compute_step.comp", "gpu_compute_normal.comp", "gpu_compute_tear.comp"});
   }
@@ -924,8 +904,8 @@ int interrupted_before_the_run() {
 }
 
 bool needs_opengl(const options& o) {
-  return o.sweep_path.empty() && (o.backend == backend_kind::gpu ||
-                                  o.backend == backend_kind::gpu_compute || !o.png_path.empty());
+  return o.sweep_path.empty() && (o.backend == cloth_backend::gpu ||
+                                  o.backend == cloth_backend::gpu_compute || !o.png_path.empty());
 }
 
 int run_headless(const options& o) {

@@ -360,10 +360,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   the_scene.load_model();
-  if (start.backend == backend_kind::gpu)
-    the_scene.switch_cloth_backend(cloth_backend::gpu);  // says why when it cannot
-  else if (start.backend == backend_kind::gpu_compute)
-    the_scene.switch_cloth_backend(cloth_backend::gpu_compute);
+  if (on_gpu(start.backend))
+    the_scene.switch_cloth_backend(start.backend);  // says why when it cannot
 
   const imgui_session ui(context->window());
   mouse_control mouse;
