@@ -347,7 +347,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
     return 1;
   }
-  std::printf("clothlab-window: %s\n", context->description().c_str());
+  std::printf("clothlab-window: %s, %s\n", context->description().c_str(),
+              context->origin().c_str());
   std::fflush(stdout);
 
   scene the_scene(start);
