@@ -76,7 +76,8 @@ clothlab::gl_context* offscreen_context() {
     if (!made)
       std::fprintf(stderr, "clothlab_bench: %s\n", error.c_str());
     else
-      std::fprintf(stderr, "clothlab_bench: OpenGL: %s\n", made->description().c_str());
+      std::fprintf(stderr, "clothlab_bench: OpenGL: %s, %s\n", made->description().c_str(),
+                   made->origin().c_str());
     return made;
   }();
   return context.get();

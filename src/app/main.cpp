@@ -13,6 +13,7 @@
 #include "headless.hpp"
 #include "options.hpp"
 #include "program_choice.hpp"
+#include "run_control.hpp"
 
 namespace {
 

@@ -218,11 +218,11 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   const std::map<std::string, stage_kind> stages = {{"spring", stage_kind::spring},
                                                     {"coupled", stage_kind::coupled},
                                                     {"cloth", stage_kind::cloth}};
-  const std::map<std::string, backend_kind> backends = {
-      {"cpu", backend_kind::cpu},
-      {"cpu-parallel", backend_kind::cpu_parallel},
-      {"gpu", backend_kind::gpu},
-      {"gpu-compute", backend_kind::gpu_compute}};
+  const std::map<std::string, cloth_backend> backends = {
+      {"cpu", cloth_backend::cpu},
+      {"cpu-parallel", cloth_backend::cpu_parallel},
+      {"gpu", cloth_backend::gpu},
+      {"gpu-compute", cloth_backend::gpu_compute}};
   const std::map<std::string, gl_choice> gl_choices = {
       {"auto", gl_choice::automatic}, {"egl", gl_choice::egl}, {"osmesa", gl_choice::osmesa}};
   std::vector<std::string> integrators;
@@ -566,22 +566,22 @@ parse_result parse_command_line(int argc, const char* const* argv) {
             "must be positive and at most 1000 s");
 
     // Combinations.
-    if (o.backend != backend_kind::cpu && o.stage != stage_kind::cloth) {
+    if (o.backend != cloth_backend::cpu && o.stage != stage_kind::cloth) {
       throw usage_error{"--backend " + backend +
                         ": this path simulates the cloth; use it with "
                         "--stage cloth"};
     }
-    if (o.backend != backend_kind::cpu &&
+    if (o.backend != cloth_backend::cpu &&
         o.cloth.dynamics.integrator != integrator_kind::semi_implicit &&
         o.cloth.dynamics.integrator != integrator_kind::explicit_euler) {
       throw usage_error{"--integrator " + integrator + ": the " + backend +
                         " path runs semi-implicit or explicit only; use --backend cpu"};
     }
-    if (o.backend != backend_kind::cpu && o.backend != backend_kind::cpu_parallel) {
+    if (o.backend != cloth_backend::cpu && o.backend != cloth_backend::cpu_parallel) {
       for (const auto* option : {"--tear-strain", "--self-collision"}) {
         const bool gpu_tears =
             std::string_view(option) == "--tear-strain" &&
-            (o.backend == backend_kind::gpu || o.backend == backend_kind::gpu_compute);
+            (o.backend == cloth_backend::gpu || o.backend == cloth_backend::gpu_compute);
         if (app.count(option) > 0 && !gpu_tears) {
           throw usage_error{std::string(option) +
                             ": only the cpu and cpu-parallel paths have it, not --backend " +
@@ -589,7 +589,7 @@ parse_result parse_command_line(int argc, const char* const* argv) {
         }
       }
     }
-    if (app.count("--threads") > 0 && o.backend != backend_kind::cpu_parallel)
+    if (app.count("--threads") > 0 && o.backend != cloth_backend::cpu_parallel)
       throw usage_error{"--threads: only with --backend cpu-parallel"};
     if (o.stage != stage_kind::cloth) {
       for (const auto* option :
@@ -611,7 +611,7 @@ parse_result parse_command_line(int argc, const char* const* argv) {
         throw usage_error{"--sweep-N " + sweep_n +
                           ": the single spring has no size; use --stage coupled or cloth"};
       }
-      if (o.backend != backend_kind::cpu) {
+      if (o.backend != cloth_backend::cpu) {
         throw usage_error{"--sweep: the stability map runs on the cpu path; drop --backend " +
                           backend};
       }
@@ -630,9 +630,9 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       throw usage_error{"--obj " + o.obj_path +
                         ": the OBJ is the cloth's; use it with --stage cloth"};
     }
-    if (o.backend == backend_kind::cpu_parallel && !cloth_parallel::available())
+    if (o.backend == cloth_backend::cpu_parallel && !cloth_parallel::available())
       throw usage_error{"--backend " + backend + ": " + cloth_parallel::unavailable};
-    if (!o.headless && o.backend == backend_kind::cpu_parallel) {
+    if (!o.headless && o.backend == cloth_backend::cpu_parallel) {
       throw usage_error{"--backend " + backend +
                         ": headless only; the window runs the cpu, gpu and gpu-compute paths "
                         "(key G)"};

@@ -7,15 +7,13 @@
 #include <string_view>
 #include <vector>
 
+#include "cloth_backend.hpp"  // --backend
 #include "coupled_springs.hpp"
 #include "single_spring.hpp"
 #include "spring_mesh.hpp"
 
 namespace clothlab {
 
-// The cloth's simulation paths: the lab's readable CPU code, the threaded and vectorised CPU
-// path, the fragment-shader GPU path of the handout, and the compute-shader GPU path.
-enum class backend_kind { cpu, cpu_parallel, gpu, gpu_compute };
 // The off-screen OpenGL context of a headless run (--gl): auto is EGL on a hardware device when
 // there is one, else OSMesa.
 enum class gl_choice { automatic, egl, osmesa };
@@ -23,7 +21,7 @@ enum class gl_choice { automatic, egl, osmesa };
 struct options {
   bool headless = false;
   stage_kind stage = stage_kind::cloth;
-  backend_kind backend = backend_kind::cpu;
+  cloth_backend backend = cloth_backend::cpu;
   int threads = 0;                      // cpu-parallel: threads (0: all cores)
   gl_choice gl = gl_choice::automatic;  // --gl
   long steps = 1000;                    // headless: steps to run

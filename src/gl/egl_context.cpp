@@ -7,6 +7,8 @@
 #include <EGL/eglext.h>
 
 #include <cstring>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "gl.hpp"
@@ -17,8 +19,14 @@ namespace {
 
 class egl_context final : public gl_context {
  public:
-  egl_context(EGLDisplay display, EGLContext context, EGLSurface surface, int width, int height)
-      : display_(display), context_(context), surface_(surface), width_(width), height_(height) {}
+  egl_context(EGLDisplay display, EGLContext context, EGLSurface surface, int width, int height,
+              std::string origin)
+      : display_(display),
+        context_(context),
+        surface_(surface),
+        width_(width),
+        height_(height),
+        origin_(std::move(origin)) {}
   ~egl_context() override {
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroySurface(display_, surface_);
@@ -30,6 +38,7 @@ class egl_context final : public gl_context {
 
   int framebuffer_width() const override { return width_; }
   int framebuffer_height() const override { return height_; }
+  std::string origin() const override { return origin_; }
 
  private:
   EGLDisplay display_;
@@ -37,6 +46,7 @@ class egl_context final : public gl_context {
   EGLSurface surface_;
   int width_;
   int height_;
+  std::string origin_;  // "through EGL (...)": the device or platform open_display found
 };
 
 bool has_extension(const char* extensions, const char* name) {
@@ -51,12 +61,19 @@ bool has_extension(const char* extensions, const char* name) {
   return false;
 }
 
+// Mesa's software device says so by an extension; a GPU's driver does not.
+bool is_software(EGLDeviceEXT device) {
+  const auto query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+      eglGetProcAddress("eglQueryDeviceStringEXT"));
+  const char* extensions =
+      query_device_string ? query_device_string(device, EGL_EXTENSIONS) : nullptr;
+  return has_extension(extensions, "EGL_MESA_device_software");
+}
+
 // The devices EGL knows, hardware ones first (Mesa's software device says so by an extension).
 std::vector<EGLDeviceEXT> devices_hardware_first() {
   const auto query_devices =
       reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-  const auto query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
-      eglGetProcAddress("eglQueryDeviceStringEXT"));
   if (query_devices == nullptr)
     return {};
   EGLint count = 0;
@@ -65,26 +82,28 @@ std::vector<EGLDeviceEXT> devices_hardware_first() {
   std::vector<EGLDeviceEXT> all(static_cast<std::size_t>(count));
   query_devices(count, all.data(), &count);
   std::vector<EGLDeviceEXT> hardware, software;
-  for (EGLDeviceEXT device : all) {
-    const char* extensions =
-        query_device_string ? query_device_string(device, EGL_EXTENSIONS) : nullptr;
-    (has_extension(extensions, "EGL_MESA_device_software") ? software : hardware).push_back(device);
-  }
+  for (EGLDeviceEXT device : all)
+    (is_software(device) ? software : hardware).push_back(device);
   hardware.insert(hardware.end(), software.begin(), software.end());
   return hardware;
 }
 
-// An initialised display: the first device that initialises, else the surfaceless platform.
-EGLDisplay open_display() {
+// An initialised display: the first device that initialises, else the surfaceless platform;
+// `origin` says which.
+EGLDisplay open_display(std::string& origin) {
   const auto platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
       eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (platform_display == nullptr)
     return EGL_NO_DISPLAY;
   for (EGLDeviceEXT device : devices_hardware_first()) {
     EGLDisplay display = platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
-    if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr))
+    if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr)) {
+      origin = is_software(device) ? "through EGL (Mesa's software device)"
+                                   : "through EGL (a hardware device)";
       return display;
+    }
   }
+  origin = "through EGL (Mesa's surfaceless platform)";
   EGLDisplay display =
       platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr))
@@ -95,12 +114,8 @@ EGLDisplay open_display() {
 }  // namespace
 
 bool egl_hardware_device_available() {
-  const auto query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
-      eglGetProcAddress("eglQueryDeviceStringEXT"));
   for (EGLDeviceEXT device : devices_hardware_first()) {
-    const char* extensions =
-        query_device_string ? query_device_string(device, EGL_EXTENSIONS) : nullptr;
-    if (!has_extension(extensions, "EGL_MESA_device_software"))
+    if (!is_software(device))
       return true;
   }
   return false;
@@ -112,7 +127,8 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
             ": both sides must be at least 1 pixel";
     return nullptr;
   }
-  EGLDisplay display = open_display();
+  std::string origin;
+  EGLDisplay display = open_display(origin);
   if (display == EGL_NO_DISPLAY) {
     error = "EGL found no device and no surfaceless platform to render on";
     return nullptr;
@@ -167,7 +183,8 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
     error = "EGL could not create an OpenGL 3.3 core context";
     return nullptr;
   }
-  auto result = std::make_unique<egl_context>(display, context, surface, width, height);
+  auto result =
+      std::make_unique<egl_context>(display, context, surface, width, height, std::move(origin));
   if (!eglMakeCurrent(display, surface, surface, context)) {
     error = "EGL could not make its context current";
     return nullptr;

@@ -1,7 +1,7 @@
 // An OpenGL 3.3 core context, current on the calling thread while the object lives.
-// Two implementations: the GLFW window (src/window) and the off-screen OSMesa buffer
-// (osmesa_context.cpp). The rendering and GPU simulation code above it does not know which one
-// it runs on; an EGL implementation can be added beside OSMesa without touching them.
+// Three implementations: the GLFW window (src/window), and off screen the OSMesa buffer
+// (osmesa_context.cpp) or the EGL pbuffer (egl_context.cpp). The rendering and GPU simulation
+// code above it does not know which one it runs on; the context itself says (origin).
 #pragma once
 
 #include <memory>
@@ -17,6 +17,9 @@ class gl_context {
   virtual int framebuffer_height() const = 0;
   // "renderer, version" as the driver reports them (GL_RENDERER, GL_VERSION).
   std::string description() const;
+  // Where the context comes from, as the program's first lines say it: "through OSMesa",
+  // "through EGL (a hardware device)", "in a GLFW window"...
+  virtual std::string origin() const = 0;
 };
 
 // An off-screen context whose default framebuffer is a width x height RGBA buffer in memory.

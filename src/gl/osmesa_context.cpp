@@ -27,6 +27,7 @@ class osmesa_context final : public gl_context {
   }
   int framebuffer_width() const override { return width_; }
   int framebuffer_height() const override { return height_; }
+  std::string origin() const override { return "through OSMesa"; }
 
  private:
   OSMesaContext context_;

@@ -33,6 +33,7 @@ class glfw_context final : public gl_context {
   // In pixels: larger than the window's size in screen coordinates on HiDPI screens.
   int framebuffer_width() const override;
   int framebuffer_height() const override;
+  std::string origin() const override { return "in a GLFW window"; }
 
   GLFWwindow* window() const { return window_; }
   bool should_close() const;

@@ -146,6 +146,7 @@ void show_readouts(const scene& the_scene) {
                     quiet_green);
         break;
       case cloth_backend::cpu:
+      case cloth_backend::cpu_parallel:  // (not offered by the window: --backend refuses it)
         fixed_lines("cloth on the CPU (double)   G: GPU", 1);
         break;
     }

@@ -6,14 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <utility>
 
 #include "framing.hpp"  // chain_view
 #include "gl.hpp"
 #include "render_geometry.hpp"  // chain_mass_radius, drawn_mass_radius
-#include "shader.hpp"           // shader_path
 #include "stability.hpp"
 
 namespace clothlab {
@@ -31,41 +29,20 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-const char* backend_name(cloth_backend backend) {
-  switch (backend) {
-    case cloth_backend::gpu:
-      return "GPU";
-    case cloth_backend::gpu_compute:
-      return "GPU compute";
-    case cloth_backend::cpu:
-      break;
-  }
-  return "CPU";
-}
-
 scene::scene(const options& start)
-    : spring_stage(start.spring),
+    : paths_(start.cloth),
+      spring_stage(start.spring),
       chain_stage(start.coupled),
-      cloth_stage(start.cloth),
+      cloth_stage(paths_.cloth),
       view(camera::default_for(start.stage)),
       stage_(start.stage) {}
 
-scene::~scene() {
-  if (probe_framebuffer_ != 0)
-    glDeleteFramebuffers(1, &probe_framebuffer_);
-  const GLuint textures[] = {compute_position_texture_, compute_normal_texture_,
-                             compute_mask_texture_};
-  glDeleteTextures(3, textures);
-}
+scene::~scene() = default;
 
 bool scene::init_renderer(std::string& error) {
   if (const GLubyte* name = glGetString(GL_RENDERER); name != nullptr)
     renderer_name_ = reinterpret_cast<const char*>(name);
-  compute_unavailable_.clear();
-  if (gpu_cloth_compute::available(compute_unavailable_) &&
-      !std::filesystem::exists(shader_path("gpu_compute_step.comp")))
-    compute_unavailable_ = "this copy of the lab has no compute path (" +
-                           shader_path("gpu_compute_step.comp").string() + " is missing)";
+  paths_.check_compute_offered();
   return renderer_.init(error);
 }
 
@@ -83,14 +60,7 @@ const state_images& scene::state_textures() {
   const auto texels = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
   normal_scratch_.resize(3 * texels);
   if (from_gpu) {
-    if (backend_ == cloth_backend::gpu_compute)
-      copy_compute_state_to_textures();
-    texel_scratch_.resize(4 * texels);
-    glBindTexture(GL_TEXTURE_2D,
-                  backend_ == cloth_backend::gpu ? gpu_.normal_texture() : compute_normal_texture_);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texel_scratch_.data());
-    glBindTexture(GL_TEXTURE_2D, 0);
+    paths_.read_normals(texel_scratch_);
     for (std::size_t k = 0; k < texels; ++k) {
       for (std::size_t c = 0; c < 3; ++c)
         normal_scratch_[3 * k + c] = texel_scratch_[4 * k + c];
@@ -170,62 +140,39 @@ void scene::select_stage(stage_kind stage) {
 
 // ---- The cloth's path: CPU or GPU (questions 11 and 12) ---------------------------------
 
-bool scene::gpu_can_run(cloth_backend target, std::string& why) const {
-  if (!gpu_cloth::supports(cloth_stage.parameters, why))
-    return false;
-  if (target == cloth_backend::gpu_compute)
-    return compute_offered(why);
-  return gpu_cloth::check_grid_size(cloth_stage.grid_size(), why);
-}
-
 // Uploads cloth_stage's current state to a GPU path.
 bool scene::load_gpu_path(cloth_backend target, std::string& why) {
-  if (!gpu_can_run(target, why))
-    return false;
-  gpu_speed_bound_ = divergence_speed_bound(cloth_stage);
-  return target == cloth_backend::gpu ? gpu_.load(cloth_stage, why)
-                                      : gpu_compute_.load(cloth_stage, why);
+  return gpu_can_run(target, why) && paths_.load(target, why);
 }
 
 void scene::read_gpu_state() {
-  if (backend_ == cloth_backend::gpu && gpu_.is_loaded())
-    gpu_.read_state(cloth_stage);
-  else if (backend_ == cloth_backend::gpu_compute && gpu_compute_.is_loaded())
-    gpu_compute_.read_state(cloth_stage);
-  else
+  if (!on_gpu(paths_.backend()))
     return;
-  ++readbacks_;
-  last_readback_ = clock::now();
+  paths_.read_state();
   state_fresh_ = true;
 }
 
 void scene::switch_cloth_backend(cloth_backend target) {
-  if (target == backend_)
+  const cloth_backend from = backend();
+  if (target == from)
     return;
   const long step = status_[static_cast<int>(stage_kind::cloth)].step;
-  if (target != cloth_backend::cpu) {
-    // The GPU path takes the cloth's current state: positions, velocities, pins, rest lengths.
-    std::string why;
-    if (!gpu_can_run(target, why)) {
-      backend_message_ =
-          std::string("The cloth stays on the ") + backend_name(backend_) + ": " + why;
-      std::printf("clothlab-window: %s\n", backend_message_.c_str());
-      std::fflush(stdout);
-      return;
-    }
-    read_gpu_state();  // from the GPU path it is on, if any
-    if (!load_gpu_path(target, why)) {
-      backend_ = cloth_backend::cpu;
-      backend_message_ = "The cloth went to the CPU: " + why;
-      std::printf("clothlab-window: %s\n", backend_message_.c_str());
-      std::fflush(stdout);
-      return;
-    }
-  } else {
-    read_gpu_state();  // the CPU goes on from the GPU's state
+  std::string why;
+  if (on_gpu(target) && !gpu_can_run(target, why)) {
+    backend_message_ = std::string("The cloth stays on the ") + backend_name(from) + ": " + why;
+    std::printf("clothlab-window: %s\n", backend_message_.c_str());
+    std::fflush(stdout);
+    return;
   }
-  const cloth_backend from = backend_;
-  backend_ = target;
+  // The new path takes the cloth's current state (positions, velocities, pins, rest lengths):
+  // read back from the GPU path it is on, if any.
+  read_gpu_state();
+  if (!paths_.load(target, why)) {  // the cloth is then on the CPU path
+    backend_message_ = "The cloth went to the CPU: " + why;
+    std::printf("clothlab-window: %s\n", backend_message_.c_str());
+    std::fflush(stdout);
+    return;
+  }
   restart_rate_window();  // the stepping rate shown is the new path's
   backend_message_ = std::string("cloth: ") + backend_name(from) + " -> " + backend_name(target) +
                      " at step " + std::to_string(step);
@@ -234,8 +181,9 @@ void scene::switch_cloth_backend(cloth_backend target) {
 }
 
 void scene::toggle_cloth_backend() {
-  switch (backend_) {
+  switch (backend()) {
     case cloth_backend::cpu:
+    case cloth_backend::cpu_parallel:
       switch_cloth_backend(cloth_backend::gpu);
       return;
     case cloth_backend::gpu:
@@ -251,9 +199,10 @@ void scene::toggle_cloth_backend() {
 }
 
 void scene::fall_back_to_cpu(const std::string& reason) {
-  const cloth_backend from = backend_;
+  const cloth_backend from = backend();
   read_gpu_state();
-  backend_ = cloth_backend::cpu;
+  std::string none;
+  paths_.load(cloth_backend::cpu, none);  // loads nothing: the CPU cloth holds the state now
   backend_message_ = std::string("cloth: ") + backend_name(from) + " -> CPU at step " +
                      std::to_string(status_[static_cast<int>(stage_kind::cloth)].step) + ": " +
                      reason;
@@ -263,52 +212,24 @@ void scene::fall_back_to_cpu(const std::string& reason) {
 
 // After load_model of the cloth: the GPU path takes the new initial state (a new N, S or pins).
 void scene::reload_gpu_cloth() {
-  if (backend_ == cloth_backend::cpu)
+  if (backend() == cloth_backend::cpu)
     return;
   std::string why;
-  if (!load_gpu_path(backend_, why)) {
-    backend_ = cloth_backend::cpu;
+  if (!load_gpu_path(backend(), why)) {
+    std::string none;
+    paths_.load(cloth_backend::cpu, none);  // the cloth goes on from its new state on the CPU
     backend_message_ = "The cloth went back to the CPU: " + why;
     std::printf("clothlab-window: %s\n", backend_message_.c_str());
     std::fflush(stdout);
   }
 }
 
-// Question 12: the same number of steps of every path, from the current state, on copies: a
-// spring_mesh copy for the CPU, a second gpu_cloth and gpu_cloth_compute for the GPU paths
-// (timed between two glFinish).
+// Question 12: the same number of steps of every path, from the current state, on copies
+// (cloth_paths::measure), said in one line.
 void scene::measure_backends(int steps) {
-  read_gpu_state();  // the current state, whichever path holds it
-  comparison_ = {};
-  comparison_.measured = true;
-  comparison_.grid_size = cloth_stage.grid_size();
-  comparison_.steps = steps;
-
-  spring_mesh cpu_copy = cloth_stage;
-  const clock::time_point start = clock::now();
-  for (int i = 0; i < steps; ++i)
-    cpu_copy.step();
-  comparison_.cpu_steps_per_second = steps / seconds_since(start);
-
-  std::string why;
-  gpu_cloth gpu_copy;
-  if (gpu_can_run(cloth_backend::gpu, why) && gpu_copy.load(cloth_stage, why))
-    comparison_.gpu_steps_per_second = 1.0 / gpu_copy.time_steps(cloth_stage.parameters, steps);
-  else
-    comparison_.gpu_error = why;
-
-  std::string compute_why;
-  gpu_cloth_compute compute_copy;
-  if (gpu_can_run(cloth_backend::gpu_compute, compute_why) &&
-      compute_copy.load(cloth_stage, compute_why)) {
-    glFinish();
-    const clock::time_point compute_start = clock::now();
-    compute_copy.run(cloth_stage.parameters, steps);
-    glFinish();
-    comparison_.compute_steps_per_second = steps / seconds_since(compute_start);
-  } else {
-    comparison_.compute_error = compute_why;
-  }
+  comparison_ = paths_.measure(steps);
+  const std::string& why = comparison_.gpu_error;
+  const std::string& compute_why = comparison_.compute_error;
   std::printf(
       "clothlab-window: N = %d, %d steps: CPU %.0f steps/s, GPU %.0f steps/s%s%s, GPU compute "
       "%.0f steps/s%s%s\n",
@@ -467,28 +388,7 @@ glm::dvec3 scene::grabbed_position() {
   const int n = cloth_stage.grid_size();
   const std::size_t k =
       spring_mesh::index(std::clamp(drag.ku, 0, n - 1), std::clamp(drag.kv, 0, n - 1), n);
-  if (!cloth_on_gpu())
-    return cloth_stage.particles().get_position(k);
-  float texel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  if (backend_ == cloth_backend::gpu_compute) {  // one vec4 of the position buffer
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, gpu_compute_.position_buffer());
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, static_cast<GLintptr>(k * sizeof texel),
-                       sizeof texel, texel);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    return {texel[0], texel[1], texel[2]};
-  }
-  // One texel of the position texture, through a framebuffer of our own.
-  if (probe_framebuffer_ == 0)
-    glGenFramebuffers(1, &probe_framebuffer_);
-  GLint previous = 0;
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, probe_framebuffer_);
-  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                         gpu_.position_texture(), 0);
-  glReadPixels(drag.ku, drag.kv, 1, 1, GL_RGBA, GL_FLOAT, texel);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous));
-  return {texel[0], texel[1], texel[2]};
+  return paths_.position(k);  // on a GPU path, one texel read back
 }
 
 void scene::start_sphere_move(const pick_ray& ray) {
@@ -525,11 +425,11 @@ void scene::draw_scene(double frame_seconds, int left, int width, int height) {
   // The frame anatomy of this frame, filled in as its phases run.
   anatomy_ = {.stage = stage_,
               .on_gpu = cloth_on_gpu(),
-              .gpu_compute = cloth_on_gpu() && backend_ == cloth_backend::gpu_compute,
+              .gpu_compute = cloth_on_gpu() && backend() == cloth_backend::gpu_compute,
               .load_seconds = load_seconds_[static_cast<int>(stage_)],
               .frame = anatomy_.frame + 1};
   state_fresh_ = false;
-  if (backend_ != cloth_backend::cpu) {
+  if (backend() != cloth_backend::cpu) {
     // The integrator, tearing or self-collision can change while the cloth is on the GPU (the
     // panel): what the GPU does not run (gpu_cloth::supports) sends the cloth back to the CPU.
     if (std::string why; !gpu_cloth::supports(cloth_stage.parameters, why))
@@ -601,20 +501,21 @@ int scene::steps_for_this_frame(double frame_seconds) {
 void scene::simulate(int steps, double wall_clock_budget) {
   const bool on_gpu = cloth_on_gpu();
   if (on_gpu)
-    glFinish();  // the previous frame's drawing is not counted as stepping
+    paths_.finish();  // the previous frame's drawing is not counted as stepping
   const clock::time_point start = clock::now();
   const auto over_budget = [&] {
     if (!std::isfinite(wall_clock_budget))
       return false;
     if (on_gpu)
-      glFinish();
+      paths_.finish();
     return seconds_since(start) > wall_clock_budget;
   };
   int done = 0;
   while (done < steps && !current_status().diverged) {
     if (on_gpu) {
       const int batch = std::min(gpu_steps_between_budget_checks, steps - done);
-      const int diverged_after = run_gpu_steps(batch);
+      // Each step checked on the GPU: the first step after which a particle diverged, or 0.
+      const int diverged_after = paths_.run(batch);
       const int taken = diverged_after != 0 ? diverged_after : batch;
       for (int i = 0; i < taken; ++i)
         count_step(cloth_stage.parameters.dynamics.time_step);
@@ -624,7 +525,7 @@ void scene::simulate(int steps, double wall_clock_budget) {
         divergence_status check = divergence_check(cloth_stage);
         if (!check.diverged)
           check = {true, "a particle not finite or faster than " +
-                             std::to_string(gpu_speed_bound_) + " m/s (checked on the GPU)"};
+                             std::to_string(paths_.speed_bound()) + " m/s (checked on the GPU)"};
         report_divergence(std::move(check));
         break;
       }
@@ -639,7 +540,7 @@ void scene::simulate(int steps, double wall_clock_budget) {
     }
   }
   if (on_gpu)
-    glFinish();
+    paths_.finish();
   const double stepping_seconds = seconds_since(start);
   anatomy_.steps = done;
   if (on_gpu)
@@ -648,7 +549,7 @@ void scene::simulate(int steps, double wall_clock_budget) {
   // can tear, for the springs overlay, whose lines are the springs of cloth_stage.
   const bool overlay_needs_state = display.show_springs && cloth_stage.parameters.tear_strain > 0.0;
   if (on_gpu && done > 0 && (panel_needs_state || overlay_needs_state) && !state_fresh_ &&
-      seconds_since(last_readback_) >= 1.0 / max_readbacks_per_second)
+      paths_.seconds_since_readback() >= 1.0 / max_readbacks_per_second)
     read_gpu_state();
   measure_rates(done, stepping_seconds);
   if (stage_ == stage_kind::cloth && done > 0)
@@ -683,13 +584,6 @@ void scene::report_first_tear() {
       "springs left\n",
       status().step, status().time, springs, whole);
   std::fflush(stdout);
-}
-
-// `count` steps of the cloth on its GPU path, each checked there for divergence.
-int scene::run_gpu_steps(int count) {
-  if (backend_ == cloth_backend::gpu_compute)
-    return gpu_compute_.run(cloth_stage.parameters, count, gpu_speed_bound_);
-  return gpu_.run(cloth_stage.parameters, count, gpu_speed_bound_);
 }
 
 // One step: force computation, then numerical integration (question 3), then the divergence
@@ -763,7 +657,7 @@ void scene::draw(int left, int width, int height) {
   const clock::time_point draw_start = clock::now();
   draw_stage(left, width, height);
   anatomy_.draw_seconds = seconds_since(draw_start);
-  if (stage_ == stage_kind::cloth && backend_ == cloth_backend::cpu && !status().diverged) {
+  if (stage_ == stage_kind::cloth && backend() == cloth_backend::cpu && !status().diverged) {
     anatomy_.normals_seconds = renderer_.last_normals_seconds();  // (part of the drawing's time)
     anatomy_.draw_seconds -= anatomy_.normals_seconds;
   }
@@ -791,20 +685,13 @@ void scene::draw_stage(int left, int width, int height) {
       renderer_.draw(chain_stage, view, display, width, height, left);
       break;
     case stage_kind::cloth:
-      if (backend_ == cloth_backend::gpu) {
+      if (on_gpu(backend())) {
         // Question 11: the flat grid's vertex shader fetches positions and normals from the GPU
-        // cloth's textures.
-        renderer_.draw_from_textures(gpu_.position_texture(), gpu_.normal_texture(), cloth_stage,
-                                     view, display, width, height, left,
-                                     gpu_.spring_mask_texture());
-        break;
-      }
-      if (backend_ == cloth_backend::gpu_compute) {
-        // The compute path's buffers, copied on the GPU into textures laid out the same way.
-        copy_compute_state_to_textures();
-        renderer_.draw_from_textures(compute_position_texture_, compute_normal_texture_,
-                                     cloth_stage, view, display, width, height, left,
-                                     compute_mask_texture_);
+        // path's textures (the compute path's buffers, copied on the GPU into textures laid out
+        // the same way).
+        const cloth_textures drawn = paths_.textures();
+        renderer_.draw_from_textures(drawn.position, drawn.normal, cloth_stage, view, display,
+                                     width, height, left, drawn.spring_mask);
         break;
       }
       renderer_.draw(cloth_stage, view, display, width, height, left);
@@ -826,50 +713,6 @@ void scene::check_in_view() {
                 std::string(stage_name(stage_)).c_str(), status().time);
     std::fflush(stdout);
   }
-}
-
-// The compute path keeps particle k = ku + N kv at element k of its buffers, one vec4 each: the
-// row-major layout of an N x N RGBA32F texture. A pixel-unpack copy fills the textures from the
-// buffers without the data leaving the GPU.
-void scene::copy_compute_state_to_textures() {
-  const int n = gpu_compute_.grid_size();
-  if (n == 0)
-    return;
-  if (compute_texture_size_ != n) {
-    for (GLuint* texture : {&compute_position_texture_, &compute_normal_texture_}) {
-      if (*texture == 0)
-        glGenTextures(1, texture);
-      glBindTexture(GL_TEXTURE_2D, *texture);
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, n, 0, GL_RGBA, GL_FLOAT, nullptr);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    }
-    if (compute_mask_texture_ == 0)
-      glGenTextures(1, &compute_mask_texture_);
-    glBindTexture(GL_TEXTURE_2D, compute_mask_texture_);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, n, n, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    compute_texture_size_ = n;
-  }
-  glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);  // after the compute shaders' writes
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  const std::pair<GLuint, GLuint> copies[] = {
-      {gpu_compute_.position_buffer(), compute_position_texture_},
-      {gpu_compute_.normal_buffer(), compute_normal_texture_}};
-  for (const auto& [buffer, texture] : copies) {
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
-    glBindTexture(GL_TEXTURE_2D, texture);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, n, n, GL_RGBA, GL_FLOAT, nullptr);
-  }
-  // The spring masks (tearing), so that the drawing leaves out the torn triangles.
-  if (gpu_compute_.spring_mask_buffer() != 0) {
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, gpu_compute_.spring_mask_buffer());
-    glBindTexture(GL_TEXTURE_2D, compute_mask_texture_);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, n, n, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-  }
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-  glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 // Question 4: kinetic + gravitational + spring energy. Without damping the exact motion keeps it

@@ -14,11 +14,10 @@
 #include <vector>
 
 #include "camera.hpp"
+#include "cloth_paths.hpp"
 #include "coupled_springs.hpp"
 #include "energy.hpp"
 #include "frame_anatomy.hpp"
-#include "gpu_cloth.hpp"
-#include "gpu_cloth_compute.hpp"
 #include "options.hpp"
 #include "picking.hpp"
 #include "renderer.hpp"
@@ -52,25 +51,6 @@ struct simulation_control {
   int start_hold_frames = 10;
 };
 
-// Where the cloth is simulated (questions 11 and 12): on the CPU in double precision
-// (spring_mesh), or on the GPU in single precision, in fragment shaders (gpu_cloth, the
-// handout's) or in OpenGL 4.3 compute shaders (gpu_cloth_compute, issue 9).
-enum class cloth_backend { cpu, gpu, gpu_compute };
-const char* backend_name(cloth_backend backend);  // "CPU", "GPU", "GPU compute"
-
-// Question 12: steps per second of every path for the same cloth, measured on copies of the
-// current state (scene::measure_backends), so that the live run is not disturbed.
-struct backend_comparison {
-  bool measured = false;
-  int grid_size = 0;  // N of the measured cloth
-  int steps = 0;      // steps timed on each path
-  double cpu_steps_per_second = 0.0;
-  double gpu_steps_per_second = 0.0;      // 0 when the GPU could not run it (gpu_error says why)
-  double compute_steps_per_second = 0.0;  // the compute path; 0 with compute_error
-  std::string gpu_error;
-  std::string compute_error;
-};
-
 // Where one stage's run stands.
 struct run_status {
   long step = 0;          // steps since load_model (step 0 is the initial state)
@@ -83,6 +63,10 @@ struct run_status {
 };
 
 class scene {
+  // The cloth and the paths that can run it (questions 11 to 13); first, so that cloth_stage
+  // below can name its cloth.
+  cloth_paths paths_;
+
  public:
   // The three stages with the parameters of the command line; nothing is loaded yet.
   explicit scene(const options& start);
@@ -147,15 +131,14 @@ class scene {
   // why in backend_message(). Works whatever stage is shown; reset() keeps the path.
   void switch_cloth_backend(cloth_backend target);
   void toggle_cloth_backend();  // key G: CPU -> GPU -> GPU compute (where offered) -> CPU
-  cloth_backend backend() const { return backend_; }
+  cloth_backend backend() const { return paths_.backend(); }
   // True when the cloth as now set up can run on that GPU path; otherwise false with the reason
   // (the integrator, tearing or self-collision, the grid size, or a context older than 4.3).
-  bool gpu_can_run(cloth_backend target, std::string& why) const;
-  // Whether the window's context has compute shaders (OpenGL 4.3); otherwise false with why.
-  bool compute_offered(std::string& why) const {
-    why = compute_unavailable_;
-    return compute_unavailable_.empty();
+  bool gpu_can_run(cloth_backend target, std::string& why) const {
+    return paths_.gpu_can_run(target, why);
   }
+  // Whether the window's context has compute shaders (OpenGL 4.3); otherwise false with why.
+  bool compute_offered(std::string& why) const { return paths_.compute_offered(why); }
   // Set by the panel every frame: whether what it shows needs the cloth's state on the CPU (the
   // energy plot, the state images). On the GPU paths the state is read back only then, at most
   // max_readbacks_per_second times a second, and so while the springs overlay shows a cloth that
@@ -163,7 +146,7 @@ class scene {
   // the GPU and the drawing reads the GPU's own buffers).
   bool panel_needs_state = true;
   static constexpr double max_readbacks_per_second = 10.0;
-  long readbacks() const { return readbacks_; }  // GPU -> CPU read-backs of the whole state
+  long readbacks() const { return paths_.readbacks(); }  // GPU -> CPU read-backs of the state
   // The last switch, refusal or fallback to the CPU, as a sentence ("" before any).
   const std::string& backend_message() const { return backend_message_; }
   // Steps per second of the live path's stepping alone (not drawing nor the panel), measured
@@ -209,7 +192,7 @@ class scene {
   // The three stages of the lab; the control panel edits their public `parameters`.
   single_spring spring_stage;   // stage 1, section 3
   coupled_springs chain_stage;  // stage 2, question 5
-  spring_mesh cloth_stage;      // stage 3, section 4
+  spring_mesh& cloth_stage;     // stage 3, section 4: paths_'s cloth
 
   // Question 2: the single spring starts with its velocity along the spring (its component along
   // the rest direction), so that the motion is exactly the 1D model's. Applied at load and reset.
@@ -245,13 +228,9 @@ class scene {
   std::size_t cloth_spring_count() const;
   void report_first_tear();
   void restart_rate_window();
-  bool cloth_on_gpu() const {
-    return stage_ == stage_kind::cloth && backend_ != cloth_backend::cpu;
-  }
+  bool cloth_on_gpu() const { return stage_ == stage_kind::cloth && on_gpu(paths_.backend()); }
   bool load_gpu_path(cloth_backend target, std::string& why);
-  void read_gpu_state();         // the current GPU path's state into cloth_stage
-  int run_gpu_steps(int count);  // returns the first diverged step of the batch, 0 if none
-  void copy_compute_state_to_textures();
+  void read_gpu_state();  // the current GPU path's state into cloth_stage
   void count_step(double time_step);
   void report_divergence(divergence_status check);
   void fall_back_to_cpu(const std::string& reason);
@@ -298,23 +277,11 @@ class scene {
   frame_anatomy last_anatomy_;            // the last whole frame's
   std::array<double, 3> load_seconds_{};  // the last load_model of each stage, s
 
-  // The GPU paths (questions 11 and 12, issue 9). While backend_ is gpu (gpu_compute), gpu_
-  // (gpu_compute_) holds the cloth's state; cloth_stage holds a copy read back only when the
-  // panel needs it (panel_needs_state), at a switch, a measurement, a press of the mouse or a
-  // divergence. The divergence check runs on the GPU (gpu_cloth::run's speed bound).
-  cloth_backend backend_ = cloth_backend::cpu;
-  gpu_cloth gpu_;
-  gpu_cloth_compute gpu_compute_;
-  std::string compute_unavailable_ = "not checked yet";  // "" when the context has 4.3
-  // The compute path's buffers copied (on the GPU) into N x N textures for the renderer.
-  GLuint compute_position_texture_ = 0;
-  GLuint compute_normal_texture_ = 0;
-  GLuint compute_mask_texture_ = 0;  // GL_R32UI: the compute path's spring masks (tearing)
-  int compute_texture_size_ = 0;
-  double gpu_speed_bound_ = 0.0;  // m/s, the divergence check's bound on the GPU paths
-  clock::time_point last_readback_ = clock::now();
+  // The GPU paths (questions 11 and 12, issue 9): while one holds the cloth's state (paths_),
+  // cloth_stage holds a copy read back only when the panel needs it (panel_needs_state), at a
+  // switch, a measurement, a press of the mouse or a divergence. The divergence check runs on
+  // the GPU (cloth_paths::run).
   bool state_fresh_ = false;  // the GPU state was read back this frame
-  long readbacks_ = 0;
   std::string backend_message_;
   backend_comparison comparison_;
   std::string renderer_name_;
@@ -326,13 +293,12 @@ class scene {
   glm::dvec3 grab_plane_point_{0.0};    // the grabbed particle at the press, m
   glm::dvec3 sphere_grab_offset_{0.0};  // Shift + drag: cursor point - sphere centre at the press
   glm::dvec3 sphere_plane_point_{0.0};  // the sphere's centre at the press, m
-  GLuint probe_framebuffer_ = 0;        // reads one texel of the GPU path's position texture
 
   state_images state_images_;
   long state_images_step_ = -1;  // the cloth's step they show (-1: none yet)
   bool state_images_from_gpu_ = false;
   std::vector<double> normal_scratch_;
-  std::vector<float> texel_scratch_;
+  std::vector<float> texel_scratch_;  // the GPU's normals, RGBA
 };
 
 }  // namespace clothlab

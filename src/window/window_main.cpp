@@ -347,7 +347,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
     return 1;
   }
-  std::printf("clothlab-window: %s\n", context->description().c_str());
+  std::printf("clothlab-window: %s, %s\n", context->description().c_str(),
+              context->origin().c_str());
   std::fflush(stdout);
 
   scene the_scene(start);
@@ -360,10 +361,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   the_scene.load_model();
-  if (start.backend == backend_kind::gpu)
-    the_scene.switch_cloth_backend(cloth_backend::gpu);  // says why when it cannot
-  else if (start.backend == backend_kind::gpu_compute)
-    the_scene.switch_cloth_backend(cloth_backend::gpu_compute);
+  if (on_gpu(start.backend))
+    the_scene.switch_cloth_backend(start.backend);  // says why when it cannot
 
   const imgui_session ui(context->window());
   mouse_control mouse;

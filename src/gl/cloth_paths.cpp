@@ -1,0 +1,219 @@
+#include "cloth_paths.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+#include <utility>
+
+#include "shader.hpp"  // shader_path
+#include "stability.hpp"
+
+namespace clothlab {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+cloth_paths::~cloth_paths() {
+  if (compute_texture_size_ != 0) {
+    const GLuint textures[] = {compute_textures_.position, compute_textures_.normal,
+                               compute_textures_.spring_mask};
+    glDeleteTextures(3, textures);
+  }
+}
+
+void cloth_paths::check_compute_offered() {
+  compute_unavailable_.clear();
+  if (gpu_cloth_compute::available(compute_unavailable_) &&
+      !std::filesystem::exists(shader_path("gpu_compute_step.comp")))
+    compute_unavailable_ = "this copy of the lab has no compute path (" +
+                           shader_path("gpu_compute_step.comp").string() + " is missing)";
+}
+
+bool cloth_paths::gpu_can_run(cloth_backend target, std::string& why) const {
+  if (!gpu_cloth::supports(cloth.parameters, why))
+    return false;
+  if (target == cloth_backend::gpu_compute)
+    return compute_offered(why);
+  return gpu_cloth::check_grid_size(cloth.grid_size(), why);
+}
+
+bool cloth_paths::load(cloth_backend target, std::string& error) {
+  // Question 4's bound, from the cloth as loaded: a particle faster than it has diverged.
+  speed_bound_ = divergence_speed_bound(cloth);
+  bool loaded = true;
+  switch (target) {
+    case cloth_backend::cpu:
+      break;
+    case cloth_backend::cpu_parallel:
+      try {
+        parallel_.load(cloth);
+      } catch (const std::invalid_argument& e) {  // the student's copy: cloth_parallel::unavailable
+        error = e.what();
+        loaded = false;
+      }
+      break;
+    case cloth_backend::gpu:
+      loaded = gpu_.load(cloth, error);
+      break;
+    case cloth_backend::gpu_compute:
+      loaded = gpu_compute_.load(cloth, error);
+      break;
+  }
+  backend_ = loaded ? target : cloth_backend::cpu;
+  return loaded;
+}
+
+void cloth_paths::read_state() {
+  switch (backend_) {
+    case cloth_backend::cpu:
+      return;
+    case cloth_backend::cpu_parallel:
+      parallel_.read_state(cloth);
+      return;
+    case cloth_backend::gpu:
+      gpu_.read_state(cloth);
+      break;
+    case cloth_backend::gpu_compute:
+      gpu_compute_.read_state(cloth);
+      break;
+  }
+  ++readbacks_;
+  last_readback_ = std::chrono::steady_clock::now();
+}
+
+int cloth_paths::run(int count) {
+  switch (backend_) {
+    case cloth_backend::cpu_parallel:
+      return parallel_.run(cloth.parameters, count, speed_bound_);
+    case cloth_backend::gpu:
+      return gpu_.run(cloth.parameters, count, speed_bound_);
+    case cloth_backend::gpu_compute:
+      return gpu_compute_.run(cloth.parameters, count, speed_bound_);
+    case cloth_backend::cpu:
+      break;
+  }
+  throw std::logic_error("cloth_paths::run: the CPU path is stepped by spring_mesh::step");
+}
+
+void cloth_paths::finish() const {
+  if (on_gpu(backend_))
+    glFinish();
+}
+
+glm::dvec3 cloth_paths::position(std::size_t k) {
+  switch (backend_) {
+    case cloth_backend::gpu:
+      return gpu_.read_particle(k).position;
+    case cloth_backend::gpu_compute:
+      return gpu_compute_.read_particle(k).position;
+    case cloth_backend::cpu_parallel:
+      read_state();
+      break;
+    case cloth_backend::cpu:
+      break;
+  }
+  return cloth.particles().get_position(k);
+}
+
+cloth_textures cloth_paths::textures() {
+  if (backend_ == cloth_backend::gpu)
+    return {gpu_.position_texture(), gpu_.normal_texture(), gpu_.spring_mask_texture()};
+  if (backend_ == cloth_backend::gpu_compute) {
+    copy_compute_state_to_textures();
+    return compute_textures_;
+  }
+  return {};
+}
+
+void cloth_paths::read_normals(std::vector<float>& rgba) {
+  const cloth_textures drawn = textures();
+  const auto n = static_cast<std::size_t>(cloth.grid_size());
+  rgba.resize(4 * n * n);
+  glBindTexture(GL_TEXTURE_2D, drawn.normal);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, rgba.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+double cloth_paths::seconds_since_readback() const {
+  return seconds_since(last_readback_);
+}
+
+// The compute path keeps particle k = ku + N kv at element k of its buffers, one vec4 each: the
+// row-major layout of an N x N RGBA32F texture. A pixel-unpack copy fills the textures from the
+// buffers without the data leaving the GPU.
+void cloth_paths::copy_compute_state_to_textures() {
+  const int n = gpu_compute_.grid_size();
+  if (n == 0)
+    return;
+  if (compute_texture_size_ != n) {
+    for (GLuint* texture : {&compute_textures_.position, &compute_textures_.normal}) {
+      if (*texture == 0)
+        glGenTextures(1, texture);
+      glBindTexture(GL_TEXTURE_2D, *texture);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, n, 0, GL_RGBA, GL_FLOAT, nullptr);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    if (compute_textures_.spring_mask == 0)
+      glGenTextures(1, &compute_textures_.spring_mask);
+    glBindTexture(GL_TEXTURE_2D, compute_textures_.spring_mask);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, n, n, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    compute_texture_size_ = n;
+  }
+  glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);  // after the compute shaders' writes
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  const std::pair<GLuint, GLuint> copies[] = {
+      {gpu_compute_.position_buffer(), compute_textures_.position},
+      {gpu_compute_.normal_buffer(), compute_textures_.normal}};
+  for (const auto& [buffer, texture] : copies) {
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, n, n, GL_RGBA, GL_FLOAT, nullptr);
+  }
+  // The spring masks (tearing), so that the drawing leaves out the torn triangles.
+  if (gpu_compute_.spring_mask_buffer() != 0) {
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, gpu_compute_.spring_mask_buffer());
+    glBindTexture(GL_TEXTURE_2D, compute_textures_.spring_mask);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, n, n, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+backend_comparison cloth_paths::measure(int steps) {
+  read_state();  // the current state, whichever path holds it
+  backend_comparison comparison;
+  comparison.measured = true;
+  comparison.grid_size = cloth.grid_size();
+  comparison.steps = steps;
+
+  spring_mesh cpu_copy = cloth;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < steps; ++i)
+    cpu_copy.step();
+  comparison.cpu_steps_per_second = steps / seconds_since(start);
+
+  gpu_cloth gpu_copy;
+  if (gpu_can_run(cloth_backend::gpu, comparison.gpu_error) &&
+      gpu_copy.load(cloth, comparison.gpu_error))
+    comparison.gpu_steps_per_second = 1.0 / gpu_copy.time_steps(cloth.parameters, steps);
+
+  gpu_cloth_compute compute_copy;
+  if (gpu_can_run(cloth_backend::gpu_compute, comparison.compute_error) &&
+      compute_copy.load(cloth, comparison.compute_error)) {
+    glFinish();
+    const auto compute_start = std::chrono::steady_clock::now();
+    compute_copy.run(cloth.parameters, steps);
+    glFinish();
+    comparison.compute_steps_per_second = steps / seconds_since(compute_start);
+  }
+  return comparison;
+}
+
+}  // namespace clothlab
