@@ -322,12 +322,12 @@ bool data_files_present(const options& o, std::string& error) {
       needed.emplace_back(option, shader_path(name).string());
   };
   if (o.stage == stage_kind::cloth && o.backend == cloth_backend::gpu) {
-    shaders("--backend gpu", {"gpu_full_screen.vert", "gpu_step.frag", "gpu_normal.frag",
-                              "gpu_tear.frag", "gpu_check.frag"});
+    shaders("--backend gpu", {"gpu_full_screen.vert", "gpu_step.frag", "gpu_cloth_common.glsl",
+                              "gpu_normal.frag", "gpu_tear.frag", "gpu_check.frag"});
   }
   if (o.stage == stage_kind::cloth && o.backend == cloth_backend::gpu_compute) {
-    shaders("--backend gpu-compute",
-            {"gpu_compute_step.comp", "gpu_compute_normal.comp", "gpu_compute_tear.comp"});
+    shaders("--backend gpu-compute", {"gpu_compute_step.comp", "gpu_cloth_common.glsl",
+                                      "gpu_compute_normal.comp", "gpu_compute_tear.comp"});
   }
   if (!o.png_path.empty()) {
     const std::string option = "--png " + o.png_path;
@@ -343,6 +343,10 @@ bool data_files_present(const options& o, std::string& error) {
       continue;
     error = option + ": cannot read " + file + ": " + std::strerror(errno) +
             " (the data folder: CLOTHLAB_DATA_DIR, or the one found beside the program)";
+    // The student copy has no compute path: its step shader would answer questions 6, 9, 12 and
+    // 13 (docs/teaching.md).
+    if (file.ends_with("gpu_compute_step.comp"))
+      error += "; a student copy of the lab has no compute path: it is in the teacher's copy";
     return false;
   }
   return true;
