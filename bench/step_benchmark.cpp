@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
-#include "cloth_parallel.hpp"
-#include "gl.hpp"
-#include "gl_context.hpp"
-#include "gpu_cloth.hpp"
-#include "gpu_cloth_compute.hpp"
-#include "program_choice.hpp"
-#include "spring_mesh.hpp"
+#include "core/cloth_parallel.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/gl.hpp"
+#include "gl/gl_context.hpp"
+#include "gl/gpu_cloth.hpp"
+#include "gl/gpu_cloth_compute.hpp"
+#include "gl/program_choice.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "headless.hpp"
+#include "app/headless.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -14,15 +14,15 @@
 #include <thread>
 #include <vector>
 
-#include "cloth_paths.hpp"
-#include "export.hpp"
-#include "gl_context.hpp"
-#include "renderer.hpp"
-#include "run_control.hpp"
-#include "run_outputs.hpp"
-#include "shader.hpp"
-#include "stability.hpp"
-#include "sweep_command.hpp"
+#include "app/run_control.hpp"
+#include "app/run_outputs.hpp"
+#include "app/sweep_command.hpp"
+#include "core/export.hpp"
+#include "core/stability.hpp"
+#include "gl/cloth_paths.hpp"
+#include "gl/gl_context.hpp"
+#include "gl/renderer.hpp"
+#include "gl/shader.hpp"
 
 namespace clothlab {
 namespace {

@@ -4,7 +4,7 @@
 // past its bounds: 2).
 #pragma once
 
-#include "options.hpp"
+#include "app/options.hpp"
 
 namespace clothlab {
 

@@ -9,11 +9,11 @@
 #include <string_view>
 #include <vector>
 
-#include "gl_context.hpp"
-#include "headless.hpp"
-#include "options.hpp"
-#include "program_choice.hpp"
-#include "run_control.hpp"
+#include "app/headless.hpp"
+#include "app/options.hpp"
+#include "app/run_control.hpp"
+#include "gl/gl_context.hpp"
+#include "gl/program_choice.hpp"
 
 namespace {
 

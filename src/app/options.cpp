@@ -1,6 +1,6 @@
-#include "options.hpp"
+#include "app/options.hpp"
 
-#include "contacts.hpp"
+#include "core/contacts.hpp"
 
 #include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
@@ -15,7 +15,7 @@
 #include <sstream>
 #include <vector>
 
-#include "cloth_parallel.hpp"
+#include "core/cloth_parallel.hpp"
 
 namespace clothlab {
 namespace {

@@ -7,10 +7,10 @@
 #include <string_view>
 #include <vector>
 
-#include "cloth_backend.hpp"  // --backend
-#include "coupled_springs.hpp"
-#include "single_spring.hpp"
-#include "spring_mesh.hpp"
+#include "core/cloth_backend.hpp"  // --backend
+#include "core/coupled_springs.hpp"
+#include "core/single_spring.hpp"
+#include "core/spring_mesh.hpp"
 
 namespace clothlab {
 

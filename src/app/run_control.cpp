@@ -1,9 +1,9 @@
-#include "run_control.hpp"
+#include "app/run_control.hpp"
 
 #include <csignal>
 #include <cstdarg>
 
-#include "options.hpp"  // one_line
+#include "app/options.hpp"  // one_line
 
 namespace clothlab {
 

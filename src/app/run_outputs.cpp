@@ -1,4 +1,4 @@
-#include "run_outputs.hpp"
+#include "app/run_outputs.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -11,11 +11,11 @@
 #include <memory>
 #include <string>
 
-#include "energy.hpp"
-#include "export.hpp"
-#include "options.hpp"
-#include "run_control.hpp"  // stop_signal
-#include "spring_mesh.hpp"
+#include "app/options.hpp"
+#include "app/run_control.hpp"  // stop_signal
+#include "core/energy.hpp"
+#include "core/export.hpp"
+#include "core/spring_mesh.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "sweep_command.hpp"
+#include "app/sweep_command.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -14,10 +14,10 @@
 #include <thread>
 #include <vector>
 
-#include "export.hpp"
-#include "run_control.hpp"
-#include "stability.hpp"
-#include "sweep.hpp"
+#include "app/run_control.hpp"
+#include "core/export.hpp"
+#include "core/stability.hpp"
+#include "core/sweep.hpp"
 
 namespace clothlab {
 namespace {

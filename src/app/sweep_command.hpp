@@ -2,7 +2,7 @@
 // sweep.hpp run on worker threads, their CSV written whole, the map printed.
 #pragma once
 
-#include "options.hpp"
+#include "app/options.hpp"
 
 namespace clothlab {
 

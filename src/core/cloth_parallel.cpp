@@ -1,4 +1,4 @@
-#include "cloth_parallel.hpp"
+#include "core/cloth_parallel.hpp"
 
 // The student copy has none of this file but its last lines: this path computes questions 6, 8,
 // 9 and 13 itself, so a student could answer them by calling it.

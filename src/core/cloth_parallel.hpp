@@ -27,10 +27,10 @@
 #include <string>
 #include <vector>
 
-#include "contacts.hpp"
-#include "parameters.hpp"
-#include "particle_system.hpp"
-#include "spring_mesh.hpp"
+#include "core/contacts.hpp"
+#include "core/parameters.hpp"
+#include "core/particle_system.hpp"
+#include "core/spring_mesh.hpp"
 
 namespace clothlab {
 

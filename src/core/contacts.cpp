@@ -1,4 +1,4 @@
-#include "contacts.hpp"
+#include "core/contacts.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
-#include "parameters.hpp"
-#include "particle_system.hpp"
+#include "core/parameters.hpp"
+#include "core/particle_system.hpp"
 
 namespace clothlab {
 

@@ -1,8 +1,8 @@
-#include "coupled_springs.hpp"
+#include "core/coupled_springs.hpp"
 
 #include <algorithm>
 
-#include "integrator.hpp"
+#include "core/integrator.hpp"
 
 namespace clothlab {
 

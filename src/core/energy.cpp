@@ -1,4 +1,4 @@
-#include "energy.hpp"
+#include "core/energy.hpp"
 
 #include <array>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "export.hpp"
+#include "core/export.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -7,7 +7,7 @@
 #include <span>
 #include <string>
 
-#include "particle_system.hpp"
+#include "core/particle_system.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "force_model.hpp"
+#include "core/force_model.hpp"
 
 namespace clothlab {
 

@@ -7,8 +7,8 @@
 #include <functional>
 #include <span>
 
-#include "parameters.hpp"
-#include "spring.hpp"
+#include "core/parameters.hpp"
+#include "core/spring.hpp"
 
 namespace clothlab {
 

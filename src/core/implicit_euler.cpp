@@ -1,4 +1,4 @@
-#include "implicit_euler.hpp"
+#include "core/implicit_euler.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -20,9 +20,9 @@
 #include <array>
 #include <vector>
 
-#include "force_model.hpp"
-#include "parameters.hpp"
-#include "particle_system.hpp"
+#include "core/force_model.hpp"
+#include "core/parameters.hpp"
+#include "core/particle_system.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "integrator.hpp"
+#include "core/integrator.hpp"
 
 #include <stdexcept>
 #include <string>

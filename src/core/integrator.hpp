@@ -20,10 +20,10 @@
 #include <span>
 #include <vector>
 
-#include "force_model.hpp"
-#include "implicit_euler.hpp"
-#include "parameters.hpp"
-#include "particle_system.hpp"
+#include "core/force_model.hpp"
+#include "core/implicit_euler.hpp"
+#include "core/parameters.hpp"
+#include "core/particle_system.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "parameters.hpp"
+#include "core/parameters.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "particle_system.hpp"
+#include "core/particle_system.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
-#include "single_spring.hpp"
+#include "core/single_spring.hpp"
 
 #include <algorithm>
 
-#include "integrator.hpp"
+#include "core/integrator.hpp"
 
 namespace clothlab {
 

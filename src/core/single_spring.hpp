@@ -5,10 +5,10 @@
 #include <array>
 #include <span>
 
-#include "integrator.hpp"
-#include "parameters.hpp"
-#include "particle_system.hpp"
-#include "spring.hpp"
+#include "core/integrator.hpp"
+#include "core/parameters.hpp"
+#include "core/particle_system.hpp"
+#include "core/spring.hpp"
 
 namespace clothlab {
 

@@ -1,12 +1,12 @@
-#include "spring_mesh.hpp"
+#include "core/spring_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "contacts.hpp"
-#include "integrator.hpp"
+#include "core/contacts.hpp"
+#include "core/integrator.hpp"
 
 namespace clothlab {
 namespace {

@@ -9,11 +9,11 @@
 #include <string_view>
 #include <vector>
 
-#include "contacts.hpp"
-#include "integrator.hpp"
-#include "parameters.hpp"
-#include "particle_system.hpp"
-#include "spring.hpp"
+#include "core/contacts.hpp"
+#include "core/integrator.hpp"
+#include "core/parameters.hpp"
+#include "core/particle_system.hpp"
+#include "core/spring.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "stability.hpp"
+#include "core/stability.hpp"
 
 #include <algorithm>
 #include <array>

@@ -41,12 +41,12 @@
 #include <span>
 #include <string>
 
-#include "coupled_springs.hpp"
-#include "force_model.hpp"
-#include "parameters.hpp"
-#include "particle_system.hpp"
-#include "single_spring.hpp"
-#include "spring_mesh.hpp"
+#include "core/coupled_springs.hpp"
+#include "core/force_model.hpp"
+#include "core/parameters.hpp"
+#include "core/particle_system.hpp"
+#include "core/single_spring.hpp"
+#include "core/spring_mesh.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "sweep.hpp"
+#include "core/sweep.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "coupled_springs.hpp"
-#include "single_spring.hpp"
-#include "spring_mesh.hpp"
-#include "stability.hpp"
+#include "core/coupled_springs.hpp"
+#include "core/single_spring.hpp"
+#include "core/spring_mesh.hpp"
+#include "core/stability.hpp"
 
 namespace clothlab {
 namespace {

@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include "parameters.hpp"
+#include "core/parameters.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "camera.hpp"
+#include "gl/camera.hpp"
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>

@@ -5,7 +5,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "parameters.hpp"  // stage_kind
+#include "core/parameters.hpp"  // stage_kind
 
 namespace clothlab {
 

@@ -1,11 +1,11 @@
-#include "cloth_paths.hpp"
+#include "gl/cloth_paths.hpp"
 
 #include <filesystem>
 #include <stdexcept>
 #include <utility>
 
-#include "shader.hpp"  // shader_path
-#include "stability.hpp"
+#include "core/stability.hpp"
+#include "gl/shader.hpp"  // shader_path
 
 namespace clothlab {
 namespace {

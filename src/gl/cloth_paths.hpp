@@ -18,12 +18,12 @@
 #include <string>
 #include <vector>
 
-#include "cloth_backend.hpp"
-#include "cloth_parallel.hpp"
-#include "gl.hpp"
-#include "gpu_cloth.hpp"
-#include "gpu_cloth_compute.hpp"
-#include "spring_mesh.hpp"
+#include "core/cloth_backend.hpp"
+#include "core/cloth_parallel.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/gl.hpp"
+#include "gl/gpu_cloth.hpp"
+#include "gl/gpu_cloth_compute.hpp"
 
 namespace clothlab {
 

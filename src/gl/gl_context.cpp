@@ -1,6 +1,6 @@
-#include "gl_context.hpp"
+#include "gl/gl_context.hpp"
 
-#include "gl.hpp"
+#include "gl/gl.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "gpu_cloth.hpp"
+#include "gl/gpu_cloth.hpp"
 // BEGIN TEACHER: question 11 asks the student to find this structure by reading the code (it is
 // written here, not in the header, so that the header compiles alike in the student copy and
 // ccache shares the objects of every file that includes it)

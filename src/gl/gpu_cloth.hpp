@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "gl.hpp"
-#include "shader.hpp"
-#include "spring_mesh.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/gl.hpp"
+#include "gl/shader.hpp"
 
 namespace clothlab {
 

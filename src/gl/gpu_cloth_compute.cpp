@@ -1,10 +1,10 @@
-#include "gpu_cloth_compute.hpp"
+#include "gl/gpu_cloth_compute.hpp"
 
 #include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 
-#include "gpu_cloth.hpp"
+#include "gl/gpu_cloth.hpp"
 
 namespace clothlab {
 namespace {

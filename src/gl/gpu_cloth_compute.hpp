@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "gl.hpp"
-#include "gpu_cloth.hpp"
-#include "shader.hpp"
-#include "spring_mesh.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/gl.hpp"
+#include "gl/gpu_cloth.hpp"
+#include "gl/shader.hpp"
 
 namespace clothlab {
 

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "gl.hpp"
-#include "gl_context.hpp"
+#include "gl/gl.hpp"
+#include "gl/gl_context.hpp"
 
 namespace clothlab {
 namespace {

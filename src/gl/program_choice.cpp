@@ -1,4 +1,4 @@
-#include "program_choice.hpp"
+#include "gl/program_choice.hpp"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "render_geometry.hpp"
+#include "gl/render_geometry.hpp"
 
 #include <glm/geometric.hpp>
 

@@ -10,8 +10,8 @@
 #include <span>
 #include <vector>
 
-#include "spring.hpp"
-#include "spring_mesh.hpp"
+#include "core/spring.hpp"
+#include "core/spring_mesh.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "renderer.hpp"
+#include "gl/renderer.hpp"
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
@@ -17,9 +17,9 @@
 #include <span>
 #include <vector>
 
-#include "export.hpp"
-#include "render_geometry.hpp"
-#include "shader.hpp"
+#include "core/export.hpp"
+#include "gl/render_geometry.hpp"
+#include "gl/shader.hpp"
 
 namespace clothlab {
 namespace {

@@ -8,11 +8,11 @@
 
 #include <glm/vec4.hpp>
 
-#include "camera.hpp"
-#include "coupled_springs.hpp"
-#include "gl.hpp"
-#include "single_spring.hpp"
-#include "spring_mesh.hpp"
+#include "core/coupled_springs.hpp"
+#include "core/single_spring.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/camera.hpp"
+#include "gl/gl.hpp"
 
 namespace clothlab {
 

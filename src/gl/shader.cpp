@@ -1,4 +1,4 @@
-#include "shader.hpp"
+#include "gl/shader.hpp"
 
 #include <cstdlib>
 #include <fstream>

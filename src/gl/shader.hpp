@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "gl.hpp"
+#include "gl/gl.hpp"
 
 namespace clothlab {
 

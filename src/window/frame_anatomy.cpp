@@ -1,4 +1,4 @@
-#include "frame_anatomy.hpp"
+#include "window/frame_anatomy.hpp"
 
 #include <cstdio>
 

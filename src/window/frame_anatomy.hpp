@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "parameters.hpp"  // stage_kind
+#include "core/parameters.hpp"  // stage_kind
 
 namespace clothlab {
 

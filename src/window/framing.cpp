@@ -1,9 +1,9 @@
-#include "framing.hpp"
+#include "window/framing.hpp"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
-#include "render_geometry.hpp"  // chain_floor_height
+#include "gl/render_geometry.hpp"  // chain_floor_height
 
 namespace clothlab {
 

@@ -4,8 +4,8 @@
 
 #include <span>
 
-#include "camera.hpp"
-#include "coupled_springs.hpp"
+#include "core/coupled_springs.hpp"
+#include "gl/camera.hpp"
 
 namespace clothlab {
 

@@ -1,8 +1,8 @@
-#include "glfw_context.hpp"
+#include "window/glfw_context.hpp"
 
 #include <cstdio>
 
-#include "gl.hpp"  // GLEW, which must come before GLFW
+#include "gl/gl.hpp"  // GLEW, which must come before GLFW
 
 #include <GLFW/glfw3.h>
 

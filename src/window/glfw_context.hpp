@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "gl_context.hpp"
+#include "gl/gl_context.hpp"
 
 struct GLFWwindow;
 

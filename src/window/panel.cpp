@@ -1,4 +1,4 @@
-#include "panel.hpp"
+#include "window/panel.hpp"
 
 #include <imgui.h>
 
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "frame_anatomy.hpp"
-#include "plot.hpp"
-#include "stability.hpp"  // the core's: step-size limits and divergence (question 4)
+#include "core/stability.hpp"  // the core's: step-size limits and divergence (question 4)
+#include "window/frame_anatomy.hpp"
+#include "window/plot.hpp"
 
 namespace clothlab {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <optional>
 
-#include "scene.hpp"
+#include "window/scene.hpp"
 
 namespace clothlab {
 

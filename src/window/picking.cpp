@@ -1,4 +1,4 @@
-#include "picking.hpp"
+#include "window/picking.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>

@@ -9,9 +9,9 @@
 #include <cstddef>
 #include <optional>
 
-#include "camera.hpp"
-#include "particle_system.hpp"
-#include "spring_mesh.hpp"
+#include "core/particle_system.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/camera.hpp"
 
 namespace clothlab {
 

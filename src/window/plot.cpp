@@ -1,4 +1,4 @@
-#include "plot.hpp"
+#include "window/plot.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "ticks.hpp"  // nice_ticks, tick_labels
+#include "window/ticks.hpp"  // nice_ticks, tick_labels
 
 namespace clothlab {
 

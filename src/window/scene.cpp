@@ -1,4 +1,4 @@
-#include "scene.hpp"
+#include "window/scene.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
@@ -9,10 +9,10 @@
 #include <limits>
 #include <utility>
 
-#include "framing.hpp"  // chain_view
-#include "gl.hpp"
-#include "render_geometry.hpp"  // chain_mass_radius, drawn_mass_radius
-#include "stability.hpp"
+#include "core/stability.hpp"
+#include "gl/gl.hpp"
+#include "gl/render_geometry.hpp"  // chain_mass_radius, drawn_mass_radius
+#include "window/framing.hpp"      // chain_view
 
 namespace clothlab {
 

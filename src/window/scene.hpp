@@ -13,20 +13,20 @@
 #include <string>
 #include <vector>
 
-#include "camera.hpp"
-#include "cloth_paths.hpp"
-#include "coupled_springs.hpp"
-#include "energy.hpp"
-#include "frame_anatomy.hpp"
-#include "options.hpp"
-#include "picking.hpp"
-#include "renderer.hpp"
-#include "single_spring.hpp"
-#include "spring_mesh.hpp"
-#include "spring_motion.hpp"
-#include "stability.hpp"
-#include "stability_map.hpp"
-#include "state_images.hpp"
+#include "app/options.hpp"
+#include "core/coupled_springs.hpp"
+#include "core/energy.hpp"
+#include "core/single_spring.hpp"
+#include "core/spring_mesh.hpp"
+#include "core/stability.hpp"
+#include "gl/camera.hpp"
+#include "gl/cloth_paths.hpp"
+#include "gl/renderer.hpp"
+#include "window/frame_anatomy.hpp"
+#include "window/picking.hpp"
+#include "window/spring_motion.hpp"
+#include "window/stability_map.hpp"
+#include "window/state_images.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "spring_motion.hpp"
+#include "window/spring_motion.hpp"
 
 #include <glm/geometric.hpp>
 

@@ -14,7 +14,7 @@
 
 #include <vector>
 
-#include "single_spring.hpp"
+#include "core/single_spring.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "stability_map.hpp"
+#include "window/stability_map.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "parameters.hpp"
-#include "sweep.hpp"
+#include "core/parameters.hpp"
+#include "core/sweep.hpp"
 
 namespace clothlab {
 

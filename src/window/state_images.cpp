@@ -1,4 +1,4 @@
-#include "state_images.hpp"
+#include "window/state_images.hpp"
 
 #include <algorithm>
 #include <cmath>

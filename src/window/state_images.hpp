@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "gl.hpp"
+#include "gl/gl.hpp"
 
 namespace clothlab {
 

@@ -1,4 +1,4 @@
-#include "ticks.hpp"
+#include "window/ticks.hpp"
 
 #include <algorithm>
 #include <cmath>

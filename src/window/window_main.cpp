@@ -14,16 +14,16 @@
 #include <string>
 #include <vector>
 
-#include "gl.hpp"  // GLEW, which must come before GLFW
+#include "gl/gl.hpp"  // GLEW, which must come before GLFW
 
 #include <GLFW/glfw3.h>
 
-#include "glfw_context.hpp"
+#include "window/glfw_context.hpp"
 
-#include "options.hpp"
-#include "panel.hpp"
-#include "renderer.hpp"
-#include "scene.hpp"
+#include "app/options.hpp"
+#include "gl/renderer.hpp"
+#include "window/panel.hpp"
+#include "window/scene.hpp"
 
 namespace {
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cloth_parallel.hpp"
-#include "spring_mesh.hpp"
+#include "core/cloth_parallel.hpp"
+#include "core/spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

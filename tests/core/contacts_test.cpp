@@ -6,8 +6,8 @@
 #include <iostream>
 #include <random>
 
-#include "contacts.hpp"
-#include "spring_mesh.hpp"
+#include "core/contacts.hpp"
+#include "core/spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "export.hpp"
-#include "particle_system.hpp"
-#include "spring_mesh.hpp"
+#include "core/export.hpp"
+#include "core/particle_system.hpp"
+#include "core/spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

@@ -10,7 +10,7 @@
 #include <set>
 #include <utility>
 
-#include "spring_mesh.hpp"
+#include "core/spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

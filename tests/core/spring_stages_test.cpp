@@ -8,10 +8,10 @@
 #include <cmath>
 #include <vector>
 
-#include "coupled_springs.hpp"
-#include "particle_system.hpp"
-#include "single_spring.hpp"
-#include "spring.hpp"
+#include "core/coupled_springs.hpp"
+#include "core/particle_system.hpp"
+#include "core/single_spring.hpp"
+#include "core/spring.hpp"
 
 namespace clothlab {
 namespace {

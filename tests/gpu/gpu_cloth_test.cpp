@@ -8,11 +8,11 @@
 #include <memory>
 #include <string>
 
-#include "gl.hpp"
-#include "gl_context.hpp"
-#include "gpu_cloth.hpp"
-#include "gpu_cloth_compute.hpp"
-#include "spring_mesh.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/gl.hpp"
+#include "gl/gl_context.hpp"
+#include "gl/gpu_cloth.hpp"
+#include "gl/gpu_cloth_compute.hpp"
 
 namespace clothlab {
 namespace {

@@ -15,13 +15,13 @@
 
 #include <glm/geometric.hpp>
 #include "../render/image.hpp"
-#include "camera.hpp"
-#include "gl.hpp"
-#include "gl_context.hpp"
-#include "gpu_cloth.hpp"
-#include "gpu_cloth_compute.hpp"
-#include "renderer.hpp"
-#include "spring_mesh.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/camera.hpp"
+#include "gl/gl.hpp"
+#include "gl/gl_context.hpp"
+#include "gl/gpu_cloth.hpp"
+#include "gl/gpu_cloth_compute.hpp"
+#include "gl/renderer.hpp"
 
 namespace clothlab {
 namespace {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "gl_context.hpp"
+#include "gl/gl_context.hpp"
 
 namespace clothlab::lab {
 

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "particle_system.hpp"
+#include "core/particle_system.hpp"
 
 namespace clothlab::lab {
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "core/spring_mesh.hpp"
+#include "gl/gpu_cloth.hpp"
 #include "gl_fixture.hpp"
-#include "gpu_cloth.hpp"
 #include "lab_check.hpp"
-#include "spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "coupled_springs.hpp"
+#include "core/coupled_springs.hpp"
 #include "lab_check.hpp"
 
 namespace clothlab {

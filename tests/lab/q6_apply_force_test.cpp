@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/spring_mesh.hpp"
 #include "lab_check.hpp"
-#include "spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

@@ -2,8 +2,8 @@
 // their is_fixed flag is set, so that apply_force never moves them.
 #include <gtest/gtest.h>
 
+#include "core/spring_mesh.hpp"
 #include "lab_check.hpp"
-#include "spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/spring_mesh.hpp"
 #include "lab_check.hpp"
-#include "spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

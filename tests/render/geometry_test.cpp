@@ -8,11 +8,11 @@
 #include <cmath>
 #include <vector>
 
-#include "camera.hpp"
-#include "coupled_springs.hpp"
-#include "render_geometry.hpp"
-#include "single_spring.hpp"
-#include "spring_mesh.hpp"
+#include "core/coupled_springs.hpp"
+#include "core/single_spring.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/camera.hpp"
+#include "gl/render_geometry.hpp"
 
 namespace clothlab {
 namespace {

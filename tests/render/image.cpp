@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <unordered_set>
 
-#include "gl.hpp"
+#include "gl/gl.hpp"
 
 namespace clothlab::image_testing {
 

@@ -25,12 +25,12 @@
 #include <glm/vec3.hpp>
 
 #include "build_paths.hpp"
-#include "camera.hpp"
-#include "gl.hpp"
-#include "gl_context.hpp"
+#include "gl/camera.hpp"
+#include "gl/gl.hpp"
+#include "gl/gl_context.hpp"
+#include "gl/renderer.hpp"
+#include "gl/shader.hpp"
 #include "image.hpp"
-#include "renderer.hpp"
-#include "shader.hpp"
 
 namespace clothlab {
 namespace {

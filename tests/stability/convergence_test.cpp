@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "integrator.hpp"
+#include "core/integrator.hpp"
+#include "core/spring_mesh.hpp"
 #include "oscillator.hpp"
-#include "spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

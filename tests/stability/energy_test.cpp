@@ -5,9 +5,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "energy.hpp"
+#include "core/energy.hpp"
+#include "core/spring_mesh.hpp"
 #include "oscillator.hpp"
-#include "spring_mesh.hpp"
 
 namespace clothlab {
 namespace {

@@ -4,7 +4,7 @@
 // x'' = -(K/m) x exactly (x = L - L0), so x(t) = x0 cos(omega t), omega = sqrt(K/m).
 #pragma once
 
-#include "single_spring.hpp"
+#include "core/single_spring.hpp"
 
 namespace clothlab::testing {
 

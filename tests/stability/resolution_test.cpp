@@ -7,9 +7,9 @@
 #include <array>
 #include <cmath>
 
-#include "energy.hpp"
-#include "spring_mesh.hpp"
-#include "stability.hpp"
+#include "core/energy.hpp"
+#include "core/spring_mesh.hpp"
+#include "core/stability.hpp"
 
 namespace clothlab {
 namespace {

@@ -7,12 +7,12 @@
 #include <limits>
 #include <numbers>
 
-#include "coupled_springs.hpp"
-#include "energy.hpp"
+#include "core/coupled_springs.hpp"
+#include "core/energy.hpp"
+#include "core/single_spring.hpp"
+#include "core/spring_mesh.hpp"
+#include "core/stability.hpp"
 #include "oscillator.hpp"
-#include "single_spring.hpp"
-#include "spring_mesh.hpp"
-#include "stability.hpp"
 
 namespace clothlab {
 namespace {

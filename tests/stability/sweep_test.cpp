@@ -9,7 +9,7 @@
 #include <string>
 #include <thread>
 
-#include "sweep.hpp"
+#include "core/sweep.hpp"
 
 namespace clothlab {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "frame_anatomy.hpp"
+#include "window/frame_anatomy.hpp"
 
 namespace clothlab {
 namespace {

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <vector>
 
-#include "coupled_springs.hpp"
-#include "framing.hpp"
-#include "render_geometry.hpp"
+#include "core/coupled_springs.hpp"
+#include "gl/render_geometry.hpp"
+#include "window/framing.hpp"
 
 namespace clothlab {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "coupled_springs.hpp"
-#include "picking.hpp"
+#include "core/coupled_springs.hpp"
+#include "window/picking.hpp"
 
 namespace clothlab {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "single_spring.hpp"
-#include "spring_motion.hpp"
+#include "core/single_spring.hpp"
+#include "window/spring_motion.hpp"
 
 namespace clothlab {
 namespace {

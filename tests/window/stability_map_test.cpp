@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "coupled_springs.hpp"
-#include "single_spring.hpp"
-#include "stability.hpp"
-#include "stability_map.hpp"
-#include "sweep.hpp"
+#include "core/coupled_springs.hpp"
+#include "core/single_spring.hpp"
+#include "core/stability.hpp"
+#include "core/sweep.hpp"
+#include "window/stability_map.hpp"
 
 namespace clothlab {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "ticks.hpp"
+#include "window/ticks.hpp"
 
 namespace clothlab {
 namespace {
