@@ -947,8 +947,8 @@ void edit_display(render_settings& display, user_actions& actions) {
     actions.toggle_help = true;
 }
 
-// Over the empty scene of a diverged stage: what happened and what to do.
-void show_divergence_banner(const run_status& status, float panel_covered_width) {
+// Opens a banner centred over the scene (right of the panel): no title, no input, see-through.
+bool begin_scene_banner(const char* name, float panel_covered_width) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos({(panel_covered_width + io.DisplaySize.x) / 2, io.DisplaySize.y * 0.4f},
                           ImGuiCond_Always, {0.5f, 0.5f});
@@ -956,7 +956,12 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                  ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
                                  ImGuiWindowFlags_NoNav;
-  if (ImGui::Begin("diverged", nullptr, flags)) {
+  return ImGui::Begin(name, nullptr, flags);
+}
+
+// Over the empty scene of a diverged stage: what happened and what to do.
+void show_divergence_banner(const run_status& status, float panel_covered_width) {
+  if (begin_scene_banner("diverged", panel_covered_width)) {
     ImGui::SetWindowFontScale(1.5f);
     ImGui::TextColored(warning_red, "diverged at step %ld (t = %.3f s)", status.step, status.time);
     ImGui::SetWindowFontScale(1.0f);
@@ -971,14 +976,7 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
 // both copies of the lab: in the student's the cloth falls freely until questions 6 to 9 are
 // written; in the teacher's, only without pins and ground (--pins none --ground-z none).
 void show_out_of_view_banner(stage_kind stage, float panel_covered_width) {
-  const ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos({(panel_covered_width + io.DisplaySize.x) / 2, io.DisplaySize.y * 0.4f},
-                          ImGuiCond_Always, {0.5f, 0.5f});
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                 ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
-                                 ImGuiWindowFlags_NoNav;
-  if (ImGui::Begin("out of view", nullptr, flags)) {
+  if (begin_scene_banner("out of view", panel_covered_width)) {
     ImGui::SetWindowFontScale(1.5f);
     ImGui::TextColored(caution_yellow, stage == stage_kind::cloth ? "The cloth fell out of view"
                                                                   : "The masses fell out of view");
