@@ -366,18 +366,14 @@ void spring_mesh::set_spring_torn(const spring& s) {
   spring_torn_[spring_slot(s.b, -du, -dv)] = 1;
 }
 
-bool spring_mesh::spring_intact(int ku, int kv, int du, int dv) const {
+void spring_mesh::throw_not_a_neighbour(int ku, int kv, int du, int dv) const {
   const int n = grid_size_;
-  const auto inside = [n](int u, int v) { return u >= 0 && u < n && v >= 0 && v < n; };
-  if (!inside(ku, kv) || !inside(ku + du, kv + dv) || du < -2 || du > 2 || dv < -2 || dv > 2) {
-    throw std::out_of_range("spring_intact(" + std::to_string(ku) + ", " + std::to_string(kv) +
-                            ", " + std::to_string(du) + ", " + std::to_string(dv) + "): s(" +
-                            std::to_string(ku + du) + ", " + std::to_string(kv + dv) +
-                            ") is not a neighbour inside the " + std::to_string(n) + " x " +
-                            std::to_string(n) + " grid: no spring can join it to s(" +
-                            std::to_string(ku) + ", " + std::to_string(kv) + ")");
-  }
-  return spring_torn_[spring_slot(index(ku, kv, n), du, dv)] == 0;
+  throw std::out_of_range("spring_intact(" + std::to_string(ku) + ", " + std::to_string(kv) + ", " +
+                          std::to_string(du) + ", " + std::to_string(dv) + "): s(" +
+                          std::to_string(ku + du) + ", " + std::to_string(kv + dv) +
+                          ") is not a neighbour inside the " + std::to_string(n) + " x " +
+                          std::to_string(n) + " grid: no spring can join it to s(" +
+                          std::to_string(ku) + ", " + std::to_string(kv) + ")");
 }
 
 bool spring_mesh::triangle_intact(int ku, int kv, bool upper) const {

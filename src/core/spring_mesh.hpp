@@ -98,7 +98,13 @@ class spring_mesh {
   // addition of clothlab, off by default: then every spring is intact). Both vertices must be
   // inside the grid and |du|, |dv| <= 2: otherwise it throws std::out_of_range, naming them
   // (which springs exist at the border is question 8's to decide).
-  bool spring_intact(int ku, int kv, int du, int dv) const;
+  bool spring_intact(int ku, int kv, int du, int dv) const {
+    const int n = grid_size_;
+    if (ku < 0 || ku >= n || kv < 0 || kv >= n || ku + du < 0 || ku + du >= n || kv + dv < 0 ||
+        kv + dv >= n || du < -2 || du > 2 || dv < -2 || dv > 2)
+      throw_not_a_neighbour(ku, kv, du, dv);
+    return spring_torn_[spring_slot(index(ku, kv, n), du, dv)] == 0;
+  }
   // The initial position x0 of every particle, flat (3k + c): the flat cloth at rest, whose
   // distances are the rest lengths (model.md).
   std::span<const double> rest_positions() const { return rest_position_; }
@@ -125,6 +131,8 @@ class spring_mesh {
   std::vector<std::uint8_t> spring_torn_;
   self_collision self_collision_;         // its scratch arrays, kept between steps
   void set_spring_torn(const spring& s);  // both ends' slots
+  // spring_intact's std::out_of_range for a neighbour outside the grid (kept out of line).
+  [[noreturn, gnu::cold]] void throw_not_a_neighbour(int ku, int kv, int du, int dv) const;
   static std::size_t spring_slot(std::size_t k, int du, int dv) {
     return 25 * k + static_cast<std::size_t>(5 * (dv + 2) + (du + 2));
   }

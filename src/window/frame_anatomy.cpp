@@ -55,7 +55,7 @@ std::vector<anatomy_row> anatomy_rows(const frame_anatomy& a) {
     rows.push_back({1, steps + ", each:", "scene.cpp step_current_stage", "", -1.0});
     rows.push_back({2, "compute_force", forces, "force computation", a.compute_force_seconds});
     rows.push_back({2, "apply_force", integration, "numerical integration", a.apply_force_seconds});
-    rows.push_back({2, "apply_constraints", constraints, "constraints", a.constraints_seconds});
+    rows.push_back({2, "constraints", constraints, "constraints", a.constraints_seconds});
     rows.push_back({2, "check", "stability.cpp: divergence_check (Q4)", "", a.check_seconds});
     if (a.stage == stage_kind::cloth)
       rows.push_back(
