@@ -53,20 +53,7 @@ void move(spring_mesh& cloth, int ku, int kv, const glm::dvec3& p) {
   cloth.particles().set_position(spring_mesh::index(ku, kv, grid(cloth)), p);
 }
 
-// One GPU step of `cloth` (from rest) with the parameters p it was built from; the force the
-// shader applied to each texel k = ku + N kv, F = m v / dt.
-std::vector<glm::dvec3> gpu_forces(const spring_mesh& cloth, const cloth_parameters& p) {
-  spring_mesh state = cloth;
-  gpu_cloth gpu;
-  std::string error;
-  EXPECT_TRUE(gpu.load(state, error)) << error;
-  gpu.step(p);
-  gpu.read_state(state);
-  std::vector<glm::dvec3> force;
-  for (std::size_t k = 0; k < state.particles().size(); ++k)
-    force.push_back(p.dynamics.mass * state.particles().get_velocity(k) / dt);
-  return force;
-}
+using lab::gpu_forces;  // one GPU step's force on each texel (gl_fixture.hpp)
 
 glm::dvec3 at(const std::vector<glm::dvec3>& force, const spring_mesh& cloth, int ku, int kv) {
   return force[spring_mesh::index(ku, kv, grid(cloth))];

@@ -81,20 +81,7 @@ std::vector<glm::dvec3> expected_wind(const spring_mesh& cloth, double K_w,
   return force;
 }
 
-// The force of one GPU step from rest, without gravity or damping: F = m v / dt (single
-// precision).
-std::vector<glm::dvec3> gpu_forces(const spring_mesh& cloth, const cloth_parameters& p) {
-  spring_mesh state = cloth;
-  gpu_cloth gpu;
-  std::string error;
-  EXPECT_TRUE(gpu.load(state, error)) << error;
-  gpu.step(p);
-  gpu.read_state(state);
-  std::vector<glm::dvec3> force;
-  for (std::size_t k = 0; k < state.particles().size(); ++k)
-    force.push_back(p.dynamics.mass * state.particles().get_velocity(k) / p.dynamics.time_step);
-  return force;
-}
+using lab::gpu_forces;  // one GPU step's force on each texel (gl_fixture.hpp)
 
 constexpr double gpu_tolerance = 1e-4;  // N, single precision
 
