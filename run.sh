@@ -2,8 +2,28 @@
 # Sets clothlab up (missing Debian packages, Release build in build/) and runs the demo:
 # the window when a display is available, else a tour of the stages rendered to PNG in out/.
 #   ./run.sh [clothlab options]     e.g. ./run.sh --stage spring --K 50
+#   ./run.sh --web [--port PORT]    the lab in a browser (docs/web.md): installs emscripten,
+#                                   builds the page into build-web/site/ and serves it on
+#                                   http://127.0.0.1:PORT/ (8000 or the next free port)
+#   ./run.sh --web-build-only       the same page, built but not served
 set -euo pipefail
 root=$(cd "$(dirname "$0")" && pwd)
+
+case "${1:-}" in
+  --web)
+    shift
+    "$root/scripts/setup-web.sh"
+    exec "$root/scripts/serve-web" "$@"
+    ;;
+  --web-build-only)
+    shift
+    if [ $# -gt 0 ]; then
+      echo "run.sh: --web-build-only takes no other option (got: $*)" >&2
+      exit 2
+    fi
+    exec "$root/scripts/setup-web.sh"
+    ;;
+esac
 "$root/scripts/setup.sh" Release
 
 if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then

@@ -46,7 +46,18 @@ if [ "${1:-}" = "--sanitize" ]; then
   exit
 fi
 
-"$root/scripts/setup.sh" Release
+web=()
+# BEGIN TEACHER
+# CI (no arguments), or a run of the web tests (-L web): the browser build first, for the tests
+# that open it in headless chromium (tests/web).
+if [ $# -eq 0 ] || [[ " $* " == *" web "* ]]; then
+  web=(--with-web)
+fi
+# END TEACHER
+"$root/scripts/setup.sh" Release "${web[@]}"
+if [ ${#web[@]} -gt 0 ]; then
+  "$root/scripts/setup-web.sh" --with-browser
+fi
 status=0
 (cd "$root/build" &&
   ctest --output-on-failure --timeout 300 -j 2 --output-junit "$root/build/test-results.xml" "$@") ||

@@ -56,7 +56,7 @@ void cpu_parallel_step(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const clothlab::cloth_parameters p = cloth_of_size(n);
   if (!clothlab::cloth_parallel::available()) {
-    state.SkipWithError(clothlab::cloth_parallel::unavailable);
+    state.SkipWithError(clothlab::cloth_parallel::unavailable_reason());
     return;
   }
   clothlab::spring_mesh cloth(p);
@@ -130,6 +130,7 @@ void gpu_compute_step(benchmark::State& state) {
 // CPU time of the main thread.
 BENCHMARK(cpu_step)
     ->Name("step/cpu")
+    ->Arg(32)  // (scripts/benchmark-web: the browser's CPU path at N = 32 and 64)
     ->RangeMultiplier(2)
     ->Range(64, 1024)
     ->UseRealTime()

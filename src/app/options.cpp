@@ -631,7 +631,7 @@ parse_result parse_command_line(int argc, const char* const* argv) {
                         ": the OBJ is the cloth's; use it with --stage cloth"};
     }
     if (o.backend == cloth_backend::cpu_parallel && !cloth_parallel::available())
-      throw usage_error{"--backend " + backend + ": " + cloth_parallel::unavailable};
+      throw usage_error{"--backend " + backend + ": " + cloth_parallel::unavailable_reason()};
     if (!o.headless && o.backend == cloth_backend::cpu_parallel) {
       throw usage_error{"--backend " + backend +
                         ": headless only; the window runs the cpu, gpu and gpu-compute paths "

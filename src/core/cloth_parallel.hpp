@@ -39,12 +39,11 @@ class cloth_parallel {
   // threads: the number of threads of each pass (0: OpenMP's default, all cores).
   explicit cloth_parallel(int threads = 0) : threads_(threads) {}
 
-  // Whether this path is built: the student copy has none (it would answer questions 6, 8, 9
-  // and 13); there every function below throws std::invalid_argument(unavailable).
+  // Whether this path is built. It is not in the student copy (it would answer questions 6, 8,
+  // 9 and 13) nor in the browser (no OpenMP): there every function below throws
+  // std::invalid_argument(unavailable_reason()) (cloth_parallel_absent.cpp).
   static bool available();
-  static constexpr const char* unavailable =
-      "the parallel CPU path (--backend cpu-parallel) is in the teacher's copy: it computes "
-      "questions 6, 8, 9 and 13 itself; use --backend cpu";
+  static const char* unavailable_reason();  // why not, where !available(); "" where it is
   // Everything of p that this path runs; otherwise false with error naming the option.
   static bool supports(const cloth_parameters& p, std::string& error);
 

@@ -1,6 +1,7 @@
 #include "core/sweep.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -233,6 +234,11 @@ void background_sweep::start(const sweep_settings& settings) {
   progress_.cells_done = 0;
   progress_.cells_total = static_cast<int>(cells.size());
   running_ = true;
+#if defined(CLOTHLAB_NO_THREADS)
+  settings_ = settings;
+  next_cell_ = 0;
+  return;
+#endif
   coordinator_ = std::thread([this, settings, cells]() mutable {
     run_cells(settings, cells, &progress_, [this](std::size_t i, const sweep_cell& cell) {
       std::lock_guard lock(cells_mutex_);
@@ -240,6 +246,22 @@ void background_sweep::start(const sweep_settings& settings) {
     });
     running_ = false;
   });
+}
+
+void background_sweep::advance([[maybe_unused]] double seconds) {
+#if defined(CLOTHLAB_NO_THREADS)
+  const auto start = std::chrono::steady_clock::now();
+  while (running_ && !progress_.cancel) {
+    if (next_cell_ >= cells_.size()) {
+      running_ = false;
+      return;
+    }
+    run_sweep_cell(settings_, cells_[next_cell_++], &progress_.cancel);
+    ++progress_.cells_done;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= seconds)
+      return;
+  }
+#endif
 }
 
 void background_sweep::cancel() {

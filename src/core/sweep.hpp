@@ -12,6 +12,12 @@
 
 #include "core/parameters.hpp"
 
+// WebAssembly built without -pthread (the browser build) can start no thread: the map's cells
+// are computed between frames instead (background_sweep::advance).
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+#define CLOTHLAB_NO_THREADS 1
+#endif
+
 namespace clothlab {
 
 // What varies along the second axis of the map.
@@ -87,6 +93,11 @@ class background_sweep {
 
   void start(const sweep_settings& settings);  // cancels and waits for a running one first
   void cancel();                               // asks to stop and waits
+  // Where there are no threads (the browser build, CLOTHLAB_NO_THREADS): computes the next
+  // cells on the calling thread, at least one, until about `seconds` of wall-clock time have
+  // passed; the window calls it once a frame. Elsewhere the workers compute the cells and this
+  // does nothing.
+  void advance(double seconds);
   bool running() const { return running_.load(); }
   double fraction_done() const;              // 0 to 1
   std::vector<sweep_cell> snapshot() const;  // the cells so far (computed ones filled in)
@@ -99,6 +110,8 @@ class background_sweep {
   mutable std::mutex cells_mutex_;  // guards cells_ between the workers and snapshot()
   std::vector<sweep_cell> cells_;
   std::thread coordinator_;  // runs the sweep, which starts its own workers
+  sweep_settings settings_;  // without threads: the sweep that advance() goes on with
+  std::size_t next_cell_ = 0;
 };
 
 }  // namespace clothlab

@@ -50,7 +50,7 @@ bool cloth_paths::load(cloth_backend target, std::string& error) {
     case cloth_backend::cpu_parallel:
       try {
         parallel_.load(cloth);
-      } catch (const std::invalid_argument& e) {  // the student's copy: cloth_parallel::unavailable
+      } catch (const std::invalid_argument& e) {  // not built: cloth_parallel_absent.cpp
         error = e.what();
         loaded = false;
       }

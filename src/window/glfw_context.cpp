@@ -1,5 +1,6 @@
 #include "window/glfw_context.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "gl/gl.hpp"  // GLEW, which must come before GLFW
@@ -26,17 +27,27 @@ std::unique_ptr<glfw_context> glfw_context::create(const std::string& title, int
             ". Is a display available? Run it under `xvfb-run -a`, or use `clothlab --headless`.";
     return nullptr;
   }
+#if defined(CLOTHLAB_GL_WEB)
+  // The browser: emscripten's GLFW makes the page's canvas a WebGL2 context (OpenGL ES 3.0).
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+  const char* wanted = "a WebGL2 context";
+#else
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  const char* wanted = "a window with an OpenGL 3.3 core context";
+#endif
   GLFWwindow* window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (window == nullptr) {
-    error = "cannot create a window with an OpenGL 3.3 core context: " + last_glfw_error;
+    error = std::string("cannot create ") + wanted + ": " + last_glfw_error;
     glfwTerminate();
     return nullptr;
   }
   glfwMakeContextCurrent(window);
+#if !defined(CLOTHLAB_GL_WEB)  // (the browser's GL functions need no loading)
   glewExperimental = GL_TRUE;
   if (const GLenum status = glewInit(); status != GLEW_OK) {
     error = std::string("GLEW cannot load the OpenGL functions: ") +
@@ -46,6 +57,7 @@ std::unique_ptr<glfw_context> glfw_context::create(const std::string& title, int
     return nullptr;
   }
   glGetError();  // glewInit leaves GL_INVALID_ENUM behind in a core context: discard it
+#endif
   glfwSwapInterval(1);
 
   auto context = std::unique_ptr<glfw_context>(new glfw_context(window));
@@ -73,6 +85,14 @@ int glfw_context::framebuffer_height() const {
   int width = 0, height = 0;
   glfwGetFramebufferSize(window_, &width, &height);
   return height;
+}
+
+float glfw_context::content_scale() const {
+  float x = 1.0f, y = 1.0f;
+#if !defined(CLOTHLAB_GL_WEB)  // (emscripten's GLFW draws the canvas at one pixel a unit)
+  glfwGetWindowContentScale(window_, &x, &y);
+#endif
+  return std::max(x, y);
 }
 
 bool glfw_context::should_close() const {

@@ -1,5 +1,6 @@
 // The window implementation of gl_context: a GLFW window with an OpenGL 3.3 core context whose
-// functions are loaded by GLEW. It also gathers the keyboard and wheel input of the window
+// functions are loaded by GLEW; in the browser build (CLOTHLAB_GL_WEB), emscripten's GLFW with
+// the page's canvas as a WebGL2 context. It also gathers the keyboard and wheel input of the window
 // between two polls, for the main loop to act on (src/window/window_main.cpp).
 #pragma once
 
@@ -33,9 +34,21 @@ class glfw_context final : public gl_context {
   // In pixels: larger than the window's size in screen coordinates on HiDPI screens.
   int framebuffer_width() const override;
   int framebuffer_height() const override;
-  std::string origin() const override { return "in a GLFW window"; }
+#if defined(CLOTHLAB_GL_WEB)
+  std::string origin() const override {
+    return "in the page's WebGL2 canvas";
+  }
+#else
+  std::string origin() const override {
+    return "in a GLFW window";
+  }
+#endif
 
-  GLFWwindow* window() const { return window_; }
+  GLFWwindow* window() const {
+    return window_;
+  }
+  // The screen's scale: 1, or more on a HiDPI screen (the page's canvas: 1).
+  float content_scale() const;
   bool should_close() const;
   void request_close();
 

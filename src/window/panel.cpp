@@ -121,10 +121,9 @@ const char* run_state(const scene& the_scene) {
   return "running";
 }
 
-// The readouts at the top of the panel, always in sight, in a fixed number of lines: the status
-// messages (paused, behind real time, diverged, the cloth's path) take their place without
-// pushing the sliders below.
-constexpr int readout_lines = 5;
+// The readouts at the top of the panel, always in sight, in a fixed number of lines (five): the
+// status messages (paused, behind real time, diverged, the cloth's path) take their place
+// without pushing the sliders below.
 void show_readouts(const scene& the_scene) {
   const run_status& status = the_scene.status();
   ImGui::Text("t = %.3f s   step %ld", status.time, status.step);

@@ -22,6 +22,9 @@ namespace {
 // so the frame's wall-clock budget is checked after a glFinish, once every this many steps
 // (a finish after every step would measure the synchronisation more than the steps).
 constexpr int gpu_steps_between_budget_checks = 8;
+// In the browser, where threads are not, the stability map computes its cells between frames:
+// this long a frame (at least a cell), so that the page stays responsive while it fills in.
+constexpr double map_seconds_per_frame = 0.012;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -429,6 +432,7 @@ void scene::draw_scene(double frame_seconds, int left, int width, int height) {
               .load_seconds = load_seconds_[static_cast<int>(stage_)],
               .frame = anatomy_.frame + 1};
   state_fresh_ = false;
+  stability_explorer.advance(map_seconds_per_frame);  // the browser's map (no threads)
   if (backend() != cloth_backend::cpu) {
     // The integrator, tearing or self-collision can change while the cloth is on the GPU (the
     // panel): what the GPU does not run (gpu_cloth::supports) sends the cloth back to the CPU.

@@ -38,6 +38,8 @@ class stability_map {
              const coupled_springs_parameters& coupled, const cloth_parameters& cloth,
              double time_step_limit);
   void cancel() { sweep_.cancel(); }
+  // Once a frame: in the browser (no threads) computes the next cells for about `seconds`.
+  void advance(double seconds) { sweep_.advance(seconds); }
   bool running() const { return sweep_.running(); }
   double fraction_done() const { return sweep_.fraction_done(); }
   bool started() const { return started_; }

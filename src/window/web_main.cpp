@@ -1,0 +1,153 @@
+// clothlab in a browser: the platform file of the window (window_app.hpp) for the WebAssembly
+// build (web/CMakeLists.txt). The page (web/index.html) gives it a canvas; it makes a WebGL2
+// context there through emscripten's GLFW, starts window_app with the defaults of docs/cli.md,
+// and runs one frame per animation frame of the page. What the desktop has and the browser has
+// not (docs/web.md): the command line, files (P downloads the screenshot), threads (the
+// cpu-parallel path and the stability map's worker threads), compute shaders.
+#include <emscripten.h>
+#include <emscripten/html5.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/gl.hpp"
+
+#include <GLFW/glfw3.h>
+
+#include "app/options.hpp"
+#include "core/spring_mesh.hpp"
+#include "gl/renderer.hpp"
+#include "window/glfw_context.hpp"
+#include "window/window_app.hpp"
+
+namespace clothlab {
+namespace {
+
+// The page: the context and the program, for the lifetime of the page (main returns; the
+// browser calls frame() at each animation frame).
+struct web_page {
+  std::unique_ptr<glfw_context> context;
+  std::unique_ptr<window_app> app;
+};
+web_page page;
+
+// clang-format off
+// What the page shows under the canvas and what the browser test reads (window.clothlab.status):
+// the stage, the cloth's path and size, the simulated time, the steps and their rate, the frame
+// rate.
+EM_JS(void, set_page_status, (const char* stage, const char* backend, int grid_size, double time,
+                              double steps, double steps_per_second, double frames_per_second,
+                              int diverged), {
+  const page = window.clothlab || (window.clothlab = {});
+  page.status = {
+    stage: UTF8ToString(stage), backend: UTF8ToString(backend), grid_size: grid_size,
+    time: time, steps: steps, steps_per_second: steps_per_second,
+    frames_per_second: frames_per_second, diverged: diverged != 0
+  };
+  if (page.onstatus) page.onstatus(page.status);
+});
+// clang-format on
+
+void publish_status(const scene& the_scene) {
+  const std::string stage(stage_name(the_scene.stage()));
+  set_page_status(stage.c_str(), backend_name(the_scene.backend()),
+                  the_scene.cloth_stage.parameters.grid_size, the_scene.status().time,
+                  static_cast<double>(the_scene.steps_taken()), the_scene.steps_per_second(),
+                  the_scene.frames_per_second(), the_scene.status().diverged ? 1 : 0);
+}
+
+void frame(void* /*unused*/) {
+  page.app->frame(page.context->poll_events());
+  publish_status(page.app->the_scene());
+}
+
+// clang-format off
+// Hands `size` bytes of PNG to the browser as a download named `name`.
+EM_JS(void, download_png, (const unsigned char* bytes, int size, const char* name), {
+  const blob = new Blob([HEAPU8.slice(bytes, bytes + size)], {type: 'image/png'});
+  const link = document.createElement('a');
+  link.href = URL.createObjectURL(blob);
+  link.download = UTF8ToString(name);
+  document.body.appendChild(link);
+  link.click();
+  link.remove();
+  setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+});
+// clang-format on
+
+}  // namespace
+
+void deliver_screenshot(stage_kind stage, int width, int height) {
+  std::vector<unsigned char> png;
+  std::string error;
+  if (!framebuffer_png(width, height, png, error)) {
+    std::fprintf(stderr, "clothlab: screenshot failed: %s\n", error.c_str());
+    return;
+  }
+  const std::string name = "clothlab-" + std::string(stage_name(stage)) + ".png";
+  download_png(png.data(), static_cast<int>(png.size()), name.c_str());
+  std::printf("clothlab: screenshot %s downloaded (%d x %d)\n", name.c_str(), width, height);
+}
+
+}  // namespace clothlab
+
+extern "C" {
+
+// The page calls it when the browser window changes size: the canvas takes the new size.
+EMSCRIPTEN_KEEPALIVE void clothlab_resize(int width, int height) {
+  if (clothlab::page.context)
+    glfwSetWindowSize(clothlab::page.context->window(), std::max(width, 1), std::max(height, 1));
+}
+
+// scripts/benchmark-web: steps/s of the readable CPU path (spring_mesh::step, as the native
+// benchmark step/cpu/N) on the default cloth of N x N particles, stepped for about `seconds` of
+// wall-clock time between two frames of the page.
+EMSCRIPTEN_KEEPALIVE double clothlab_cpu_steps_per_second(int n, double seconds) {
+  clothlab::cloth_parameters p;
+  p.grid_size = std::clamp(n, 2, 512);
+  clothlab::spring_mesh cloth(p);
+  const double start = emscripten_get_now();  // ms
+  long steps = 0;
+  double elapsed = 0.0;
+  do {
+    for (int i = 0; i < 10; ++i)
+      cloth.step();
+    steps += 10;
+    elapsed = (emscripten_get_now() - start) / 1000.0;
+  } while (elapsed < seconds);
+  return static_cast<double>(steps) / elapsed;
+}
+
+}  // extern "C"
+
+int main() {
+  using namespace clothlab;
+  const options start;  // the defaults of docs/cli.md: the cloth, on the CPU
+  double css_width = 1280.0, css_height = 800.0;
+  emscripten_get_element_css_size("#canvas", &css_width, &css_height);
+  std::string error;
+  page.context = glfw_context::create("clothlab", std::max(static_cast<int>(css_width), 320),
+                                      std::max(static_cast<int>(css_height), 240), error);
+  if (!page.context) {
+    std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+    return 1;
+  }
+  // Float colour attachments (the GPU cloth's state textures) are an extension in WebGL2; without
+  // it the GPU path says why it cannot run (gpu_cloth), and the CPU path runs as before.
+  if (!emscripten_webgl_enable_extension(emscripten_webgl_get_current_context(),
+                                         "EXT_color_buffer_float"))
+    std::printf("clothlab: this browser has no EXT_color_buffer_float: no GPU cloth path\n");
+  std::printf("clothlab: %s, %s\n", page.context->description().c_str(),
+              page.context->origin().c_str());
+  page.app = window_app::create(*page.context, start, error);
+  if (!page.app) {
+    std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+    return 1;
+  }
+  // One frame per animation frame of the page; main returns and the page lives on.
+  emscripten_set_main_loop_arg(frame, nullptr, 0, false);
+  return 0;
+}

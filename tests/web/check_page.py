@@ -1,0 +1,178 @@
+#!/usr/bin/env python3
+"""The browser test of the web build (docs/web.md): the page in Debian's headless chromium
+(WebGL2 on the CPU, SwiftShader), driven through chromedriver as a user would drive it.
+
+    tests/web/check_page.py SITE_DIR [--out DIR] [--update-reference]
+
+Checks, in order, each waiting for the page (never for a fixed time):
+  1. the page loads and its first frame comes, with no error on the console;
+  2. the simulated time advances;
+  3. the keys 1, 2, 3 switch the stage;
+  4. G moves the cloth to the GPU path (fragment shaders) and time advances there; G again
+     brings it back to the CPU (WebGL2 has no compute shaders: that path is not offered);
+  5. N (pause after one step) then R (reset): the initial cloth, whose picture (the scene, right
+     of the panel) matches tests/web/reference/initial_cloth.png within a tolerance, and is
+     neither blank nor NaN-coloured;
+  6. still no error on the console (the page's and the browser's, WebGL's warnings included).
+Exit status 0 when all pass, 1 at the first failure (what failed, in a sentence), 2 for bad
+usage. --out DIR keeps the screenshots; --update-reference rewrites the reference from this run
+(after a change that moves the picture on purpose: look at it before committing it).
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import browser  # noqa: E402
+
+here = os.path.dirname(os.path.abspath(__file__))
+reference_path = os.path.join(here, "reference", "initial_cloth.png")
+width, height = 1280, 800
+bar_height = 22  # web/index.html: the status bar under the canvas
+# The scene, right of the panel (410 px wide at the default font) and inside the canvas.
+scene_box = (430, 10, width - 440, height - bar_height - 20)  # left, top, width, height
+tolerance = 40  # per channel, of 255: SwiftShader versions round differently
+max_differing_fraction = 0.03
+
+
+class failure(Exception):
+    pass
+
+
+def console_errors(page, seen):
+    """The page's recorded errors and the browser's console errors and WebGL warnings since
+    the start (accumulated in `seen`)."""
+    for level, message in page.console():
+        if level == "SEVERE" or "WebGL" in message or "GL_INVALID" in message:
+            seen.append(f"{level}: {message}")
+    return (page.run("return window.clothlab ? window.clothlab.errors : ['no window.clothlab']")
+            or []) + seen
+
+
+def status(page):
+    return page.run("return window.clothlab && window.clothlab.status")
+
+
+def wait_status(page, condition, what, seen, timeout=60):
+    """Waits until the status satisfies the JavaScript condition on `s` (the status)."""
+    def early():
+        errors = console_errors(page, seen)
+        return f"the page reported an error: {errors[0]}" if errors else None
+    try:
+        page.wait_for(f"const s = window.clothlab && window.clothlab.status; "
+                      f"return !!s && ({condition});", what, timeout, early)
+    except browser.browser_error as e:
+        raise failure(f"{e}; the last status: {status(page)}") from None
+    return status(page)
+
+
+def picture_problems(scene, reference):
+    """What is wrong with the scene's picture: blank, NaN-coloured, or unlike the reference."""
+    pixels = scene.pixels
+    count = scene.width * scene.height
+    colours = {pixels[i:i + 3] for i in range(0, len(pixels), 3 * 97)}
+    if len(colours) < 20:
+        return f"the scene is blank: {len(colours)} distinct colours in a sample"
+    black = sum(1 for i in range(0, len(pixels), 3) if pixels[i:i + 3] == b"\0\0\0")
+    if black > 0.01 * count:
+        return f"{100 * black / count:.1f}% of the scene is pure black (NaN colours?)"
+    if reference is None:
+        return None
+    if (reference.width, reference.height) != (scene.width, scene.height):
+        return (f"the reference is {reference.width} x {reference.height}, the scene "
+                f"{scene.width} x {scene.height}")
+    differing = 0
+    for i in range(0, len(pixels), 3):
+        if (abs(pixels[i] - reference.pixels[i]) > tolerance or
+                abs(pixels[i + 1] - reference.pixels[i + 1]) > tolerance or
+                abs(pixels[i + 2] - reference.pixels[i + 2]) > tolerance):
+            differing += 1
+    if differing > max_differing_fraction * count:
+        return (f"{100 * differing / count:.1f}% of the scene's pixels differ from the reference "
+                f"by more than {tolerance}/255 (at most {100 * max_differing_fraction:.0f}% may)")
+    return None
+
+
+def main():
+    parser = argparse.ArgumentParser(description="The browser test of the web build.")
+    parser.add_argument("site", help="the built page's folder (build-web/site)")
+    parser.add_argument("--out", help="a folder to keep the screenshots in")
+    parser.add_argument("--update-reference", action="store_true")
+    args = parser.parse_args()
+    if not os.path.isfile(os.path.join(args.site, "clothlab.wasm")) and \
+            not os.path.isfile(os.path.join(args.site, "index.html")):
+        print(f"FAIL: the page is not built ({args.site} is empty or missing): ./test.sh builds "
+              "it with scripts/setup-web.sh --with-browser, which installs emscripten and "
+              "chromium; or ./run.sh --web-build-only")
+        return 1
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+    seen = []
+    try:
+        with browser.page_session(args.site, width=width, height=height) as page:
+            s = wait_status(page, "true", "the page's first frame", seen, timeout=120)
+            print(f"ok: the page loads and draws (stage {s['stage']}, cloth on {s['backend']}, "
+                  f"N = {s['grid_size']})")
+            s = wait_status(page, "s.time > 0.05", "the simulated time to start", seen)
+            t0 = s["time"]
+            s = wait_status(page, f"s.time > {t0} + 0.05", "the simulated time to advance", seen)
+            print(f"ok: the simulated time advances ({t0:.3f} s, then {s['time']:.3f} s; "
+                  f"{s['steps_per_second']:.0f} steps/s, {s['frames_per_second']:.0f} frames/s)")
+            for key, stage in (("1", "spring"), ("2", "coupled"), ("3", "cloth")):
+                page.press(key)
+                wait_status(page, f"s.stage === '{stage}'", f"key {key}: stage {stage}", seen)
+            print("ok: keys 1, 2, 3 switch to the spring, the chain, the cloth")
+            page.press("g")
+            s = wait_status(page, "s.backend === 'gpu'", "key G: the cloth on the GPU", seen)
+            t0 = s["time"]
+            s = wait_status(page, f"s.backend === 'gpu' && s.time > {t0} + 0.05",
+                            "the time to advance on the GPU", seen)
+            if args.out:
+                page.screenshot().write_png(os.path.join(args.out, "gpu.png"))
+            page.press("g")
+            wait_status(page, "s.backend === 'cpu'", "key G again: the cloth back on the CPU",
+                        seen)
+            print(f"ok: G runs the cloth on the GPU ({t0:.3f} s, then {s['time']:.3f} s) and "
+                  "back on the CPU")
+            page.press("n")
+            page.press("r")
+            s = wait_status(page, "s.time === 0", "keys N then R: the paused initial state", seen)
+            frames = page.run("return window.clothlab.frames")
+            page.wait_for(f"return window.clothlab.frames >= {frames} + 3",
+                          "three frames of the initial state", timeout=60)
+            shot = page.screenshot()
+            if args.out:
+                shot.write_png(os.path.join(args.out, "initial_cloth_page.png"))
+            scene = shot.crop(*scene_box)
+            if args.update_reference:
+                os.makedirs(os.path.dirname(reference_path), exist_ok=True)
+                scene.write_png(reference_path)
+                print(f"check_page: wrote {reference_path}: look at it before committing it")
+            reference = (browser.read_png(open(reference_path, "rb").read())
+                         if os.path.exists(reference_path) else None)
+            problem = picture_problems(scene, None)  # blank, NaN-coloured
+            if problem is None and reference is None:
+                raise failure(f"no reference picture {reference_path} "
+                              "(--update-reference makes it)")
+            problem = problem or picture_problems(scene, reference)
+            if problem:
+                if args.out:
+                    scene.write_png(os.path.join(args.out, "initial_cloth.png"))
+                raise failure(f"the canvas does not show the initial cloth: {problem}")
+            print("ok: the canvas shows the initial cloth (the reference picture, within "
+                  f"{tolerance}/255 on {100 * (1 - max_differing_fraction):.0f}% of the pixels)")
+            errors = console_errors(page, seen)
+            if errors:
+                raise failure(f"the console has {len(errors)} error(s), the first: {errors[0]}")
+            print("ok: no error on the console")
+    except failure as e:
+        print(f"FAIL: {e}")
+        return 1
+    except browser.browser_error as e:
+        print(f"FAIL: {e}")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
