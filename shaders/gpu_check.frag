@@ -1,4 +1,3 @@
-#version 330 core
 // GPU cloth, the divergence check (not a pass of the lab's model): a fragment survives only for
 // a particle whose position or velocity is not finite, or whose speed exceeds speed_bound. An
 // occlusion query counts the survivors, so the CPU learns whether a step diverged without

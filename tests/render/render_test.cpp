@@ -28,6 +28,7 @@
 #include "gl/camera.hpp"
 #include "gl/gl.hpp"
 #include "gl/gl_context.hpp"
+#include "gl/gpu_cloth.hpp"
 #include "gl/renderer.hpp"
 #include "gl/shader.hpp"
 #include "image.hpp"
@@ -442,12 +443,45 @@ TEST_F(BrokenDataTest, MissingShaderIsNamed) {
 }
 
 TEST_F(BrokenDataTest, ShaderThatDoesNotCompileIsNamedWithItsLog) {
-  overwrite(data_ / "shaders" / "draw_ground.frag", "#version 330 core\nvoid main() { oops; }\n");
+  overwrite(data_ / "shaders" / "draw_ground.frag", "void main() { oops; }\n");
   renderer r;
   std::string error;
   EXPECT_FALSE(r.init(error));
   EXPECT_NE(error.find("draw_ground.frag"), std::string::npos) << error;
   EXPECT_NE(error.find("oops"), std::string::npos) << error;
+}
+
+// The loader puts the #version line before the file: the compiler's line numbers are still the
+// file's own ("0:3(" in Mesa's log, "0(3)" in others'), also below an #include.
+TEST_F(BrokenDataTest, ShaderErrorsGiveTheFilesOwnLineNumbers) {
+  const auto names_line = [](const std::string& log, int line) {
+    const std::string n = std::to_string(line);
+    return log.find("0:" + n + "(") != std::string::npos ||
+           log.find("0(" + n + ")") != std::string::npos;
+  };
+  overwrite(data_ / "shaders" / "draw_ground.frag", "// line 1\n\nvoid main() { oops; }\n");
+  renderer r;
+  std::string error;
+  EXPECT_FALSE(r.init(error));
+  EXPECT_NE(error.find("draw_ground.frag"), std::string::npos) << error;
+  EXPECT_TRUE(names_line(error, 3)) << error;
+
+  overwrite(data_ / "shaders" / "gpu_step.frag",
+            "// line 1\n#include \"gpu_cloth_common.glsl\"\nvoid main() {\n  oops;\n}\n");
+  gpu_cloth gpu;
+  spring_mesh cloth(cloth_parameters{});
+  EXPECT_FALSE(gpu.load(cloth, error));
+  EXPECT_NE(error.find("gpu_step.frag"), std::string::npos) << error;
+  EXPECT_TRUE(names_line(error, 4)) << error;
+}
+
+TEST_F(BrokenDataTest, ShaderWithItsOwnVersionLineIsRefusedSayingSo) {
+  overwrite(data_ / "shaders" / "draw_ground.frag", "#version 330 core\nvoid main() {}\n");
+  renderer r;
+  std::string error;
+  EXPECT_FALSE(r.init(error));
+  EXPECT_NE(error.find("draw_ground.frag: begins with a #version line"), std::string::npos)
+      << error;
 }
 
 TEST_F(BrokenDataTest, BrokenTextureIsNamed) {
