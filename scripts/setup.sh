@@ -7,7 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build_type=${1:-Release}
 
 packages=(
-  build-essential ccache cmake pkg-config clang-format python3
+  build-essential ccache cmake pkg-config clang-format python3 glslang-tools
   libglfw3-dev libglew-dev libglm-dev libimgui-dev libstb-dev libosmesa6-dev libegl-dev
   libopengl-dev libegl-mesa0
   libcli11-dev libgtest-dev libbenchmark-dev
