@@ -17,6 +17,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -397,6 +398,23 @@ TEST_F(RenderTest, SavedPngHoldsTheFramebufferTopRowFirst) {
     return saved.channel(width / 2, y, 2) - saved.channel(width / 2, y, 0);
   };
   EXPECT_GT(blueness(0), blueness(height - 1) + 15);
+}
+
+// The web build's P key downloads the PNG from memory: the same bytes as the saved file.
+TEST_F(RenderTest, PngInMemoryHasTheBytesOfTheSavedFile) {
+  render_cloth();
+  std::vector<unsigned char> png;
+  std::string error;
+  ASSERT_TRUE(framebuffer_png(width, height, png, error)) << error;
+  const auto path = std::filesystem::current_path() / "render-output" / "in-memory.png";
+  std::filesystem::create_directories(path.parent_path());
+  ASSERT_TRUE(save_framebuffer_png(path.string(), width, height, error)) << error;
+  std::ifstream file(path, std::ios::binary);
+  const std::vector<unsigned char> saved((std::istreambuf_iterator<char>(file)),
+                                         std::istreambuf_iterator<char>());
+  EXPECT_EQ(png, saved);
+  EXPECT_FALSE(framebuffer_png(0, height, png, error));
+  EXPECT_NE(error.find("0x" + std::to_string(height)), std::string::npos) << error;
 }
 
 TEST_F(RenderTest, SavingToAnUnwritablePathNamesThePath) {
