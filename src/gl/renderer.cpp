@@ -661,6 +661,9 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
     }
     const GLsizei cells = (cloth.grid_size() - 1) * (cloth.grid_size() - 1);
     glBindVertexArray(empty_vao);
+    // The shadow's shader also declares the lines' integer input `texel`, unused here: with no
+    // array it reads the generic value, which WebGL requires to be an integer one too.
+    glVertexAttribI4i(position_or_texel_location, 0, 0, 0, 0);
     glDrawArrays(GL_TRIANGLES, 0, 6 * cells);
     glBindVertexArray(vao);
   };
