@@ -17,7 +17,7 @@ for argument in "$@"; do
 done
 
 packages=(
-  build-essential ccache cmake pkg-config clang-format python3
+  build-essential ccache cmake pkg-config clang-format python3 glslang-tools
   libglfw3-dev libglew-dev libglm-dev libimgui-dev libstb-dev libosmesa6-dev libegl-dev
   libopengl-dev libegl-mesa0
   libcli11-dev libgtest-dev libbenchmark-dev

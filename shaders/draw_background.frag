@@ -1,4 +1,3 @@
-#version 330 core
 // A calm sky: pale at the horizon (the colour the ground fades into far away), soft blue above,
 // by the direction each pixel looks in (so the horizon stays level when the camera turns).
 in vec2 screen_position;

@@ -1,4 +1,3 @@
-#version 330 core
 // One triangle that covers the whole screen (no vertex buffer: built from gl_VertexID), on the
 // far plane (depth 1), so that it fills only what the scene left empty.
 out vec2 screen_position;  // normalised device coordinates, -1..1

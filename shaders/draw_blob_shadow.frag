@@ -1,4 +1,3 @@
-#version 330 core
 // The shade of a soft round shadow: darkest at the centre, none from one radius on. Blending
 // multiplies the ground's colour by it (overlapping shadows multiply).
 in vec2 offset;  // from the centre, in radii

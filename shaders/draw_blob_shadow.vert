@@ -1,4 +1,3 @@
-#version 330 core
 // A soft round shadow on the ground under a mass: one square per instance, around the blob's
 // centre, in the ground plane. Drawn over the ground, which it darkens (multiplied in by blending).
 layout(location = 0) in vec4 blob;  // per instance: x, y (m), radius (m), darkness (0..1)

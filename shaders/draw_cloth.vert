@@ -1,4 +1,3 @@
-#version 330 core
 // The CPU cloth: positions and normals come from the simulation's arrays every frame.
 layout(location = 0) in vec3 position;  // m
 layout(location = 1) in vec3 vertex_normal;

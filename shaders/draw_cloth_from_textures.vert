@@ -1,4 +1,3 @@
-#version 330 core
 // The GPU cloth (question 11): each vertex fetches its position and normal from the N x N state
 // textures, texel (ku, kv) holding particle k = ku + N kv. No vertex data: the CPU draws
 // 6 (N-1)^2 vertices, two triangles per cell, and the vertex number gives the cell and the

@@ -1,4 +1,3 @@
-#version 330 core
 uniform vec4 flat_colour;  // rgba; alpha blends it over what is behind
 out vec4 colour;
 

@@ -1,4 +1,3 @@
-#version 330 core
 // Geometry from CPU positions for flat passes: lines (springs, wireframe), and the cloth's
 // shadow, which is the cloth squashed onto the ground along the light (with draw_ground.frag).
 layout(location = 0) in vec3 position;  // m

@@ -1,4 +1,3 @@
-#version 330 core
 // The GPU cloth's flat passes (lines; the shadow with draw_ground.frag): each vertex fetches its
 // position from the N x N position texture, texel (ku, kv) holding particle k = ku + N kv. The
 // lines come with their texels; the shadow's triangles, like the surface's

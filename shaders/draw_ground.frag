@@ -1,4 +1,3 @@
-#version 330 core
 // A checkered floor of tile_size tiles that fades into the horizon colour far away. Also draws
 // the cloth's shadow: the same floor, darker. (The round shadows under the masses are drawn over
 // it by draw_blob_shadow: a loop over them here made every ground pixel cost twice as much on

@@ -1,4 +1,3 @@
-#version 330 core
 // The ground: a large horizontal square at z = ground_height.
 layout(location = 0) in vec2 corner;  // m, x and y
 uniform mat4 view_projection;

@@ -1,4 +1,3 @@
-#version 330 core
 // Blinn-Phong shading of every lit surface (cloth, masses, pins): one directional light plus a
 // sky/ground ambient term. Two-sided: a back face uses the flipped normal and a tinted colour.
 in vec3 world_position;

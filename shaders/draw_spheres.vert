@@ -1,4 +1,3 @@
-#version 330 core
 // Instanced spheres (masses, fixed point, pins): one unit sphere scaled and moved per instance.
 layout(location = 0) in vec3 unit_position;  // on the unit sphere: also the outward normal
 layout(location = 1) in vec4 centre_radius;  // per instance: centre (m), radius (m)

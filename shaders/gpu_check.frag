@@ -1,7 +1,6 @@
-#version 330 core
 // GPU cloth, the divergence check (not a pass of the lab's model): a fragment survives only for
 // a particle whose position or velocity is not finite, or whose speed exceeds speed_bound. An
-// occlusion query counts the survivors, so the CPU learns whether a step diverged without
+// occlusion query says whether any survived, so the CPU learns whether a step diverged without
 // reading the state back. Nothing is written (colour writes are off).
 
 uniform sampler2D position_texture;  // xyz: p (m)

@@ -3,7 +3,7 @@
 // ground (question 9) and the tearing rule. Both step shaders (gpu_step.frag, the fragment
 // path; gpu_compute_step.comp, the compute path) and both tearing shaders include it: a line
 // `#include "gpu_cloth_common.glsl"` is replaced by this file when a shader is loaded
-// (src/gl/shader.cpp), after the including file's #version line.
+// (src/gl/shader.cpp).
 
 // The 12 particles a particle can be joined to (handout figure 6): (du, dv) and the spring family
 // (0 structural, 1 shear, 2 bending). Bit i of a particle's spring mask is neighbours[i].

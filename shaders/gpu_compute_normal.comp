@@ -1,4 +1,3 @@
-#version 430 core
 // The compute-shader GPU path, pass 2: the vertex normal of particle (ku, kv), central
 // differences as in gpu_normal.frag (docs/model.md).
 layout(local_size_x = 8, local_size_y = 8) in;

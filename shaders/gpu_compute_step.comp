@@ -1,4 +1,3 @@
-#version 430 core
 // The compute-shader GPU path (--backend gpu-compute, issue 9), pass 1: one step of
 // docs/model.md for particle (ku, kv) = this invocation, in single precision: the same step as
 // gpu_step.frag (forces from the positions and normals at the start of the step, the springs

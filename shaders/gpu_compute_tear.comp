@@ -1,4 +1,3 @@
-#version 430 core
 // The compute-shader GPU path, pass 3 (tearing, an addition; only when --tear-strain E is set),
 // last in the step (docs/model.md): the spring from particle (ku, kv) to its neighbour i is
 // removed from the spring mask, for the rest of the run, when the new positions stretch it beyond

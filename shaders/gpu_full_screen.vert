@@ -1,4 +1,3 @@
-#version 330 core
 // GPU cloth (handout section 5): one triangle that covers the whole N x N viewport, so that the
 // fragment shader runs exactly once per texel, i.e. once per particle. No vertex data: the
 // corners (-1,-1), (3,-1), (-1,3) come from the vertex number.

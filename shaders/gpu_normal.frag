@@ -1,4 +1,3 @@
-#version 330 core
 // GPU cloth, pass 2: the vertex normal of particle (ku, kv) = this texel (docs/model.md):
 //   n = normalize(d_u x d_v),
 //   d_u = p(min(ku+1, N-1), kv) - p(max(ku-1, 0), kv),

@@ -1,4 +1,3 @@
-#version 330 core
 // GPU cloth, pass 1 (questions 12 and 13): one step of docs/model.md for particle (ku, kv) =
 // this texel, in single precision. Forces from the positions and normals at the start of the
 // step, then the integrator and the constraints. Writes the new position and velocity. The

@@ -1,4 +1,3 @@
-#version 330 core
 // GPU cloth, pass 3 (tearing, an addition of clothlab; only when --tear-strain E is set), last in
 // the step (docs/model.md): the spring from particle (ku, kv) = this texel to its neighbour i is
 // removed from the spring mask, for the rest of the run, when the new positions stretch it beyond

@@ -132,10 +132,19 @@ void cloth_paths::read_normals(std::vector<float>& rgba) {
   const cloth_textures drawn = textures();
   const auto n = static_cast<std::size_t>(cloth.grid_size());
   rgba.resize(4 * n * n);
-  glBindTexture(GL_TEXTURE_2D, drawn.normal);
+  // Read through a framebuffer (OpenGL ES has no glGetTexImage), the caller's one bound again.
+  GLint read_framebuffer = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer);
+  GLuint framebuffer = 0;
+  glGenFramebuffers(1, &framebuffer);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, drawn.normal, 0);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, rgba.data());
-  glBindTexture(GL_TEXTURE_2D, 0);
+  glReadPixels(0, 0, static_cast<GLsizei>(n), static_cast<GLsizei>(n), GL_RGBA, GL_FLOAT,
+               rgba.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read_framebuffer));
+  glDeleteFramebuffers(1, &framebuffer);
 }
 
 double cloth_paths::seconds_since_readback() const {
@@ -166,7 +175,9 @@ void cloth_paths::copy_compute_state_to_textures() {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     compute_texture_size_ = n;
   }
+#if !defined(CLOTHLAB_GL_WEB)  // (the web build has no compute path, nor OpenGL 4.3's barriers)
   glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);  // after the compute shaders' writes
+#endif
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   const std::pair<GLuint, GLuint> copies[] = {
       {gpu_compute_.position_buffer(), compute_textures_.position},

@@ -38,6 +38,26 @@
 namespace clothlab {
 namespace {
 
+#if defined(CLOTHLAB_GL_WEB)
+// WebGL2 has no polygon mode: triangles are always filled, there is nothing to save.
+struct saved_polygon_mode {
+  static void fill() {}
+};
+#else
+// The polygon mode: a caller may be drawing in outline (GL_LINE); the passes fill.
+class saved_polygon_mode {
+ public:
+  saved_polygon_mode() { glGetIntegerv(GL_POLYGON_MODE, mode_.data()); }
+  ~saved_polygon_mode() { glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(mode_[0])); }
+  saved_polygon_mode(const saved_polygon_mode&) = delete;
+  saved_polygon_mode& operator=(const saved_polygon_mode&) = delete;
+  static void fill() { glPolygonMode(GL_FRONT_AND_BACK, GL_FILL); }
+
+ private:
+  std::array<GLint, 2> mode_{GL_FILL, GL_FILL};
+};
+#endif
+
 // The GL state that the GPU passes change, saved on construction and restored on destruction,
 // so that the renderer's drawing around a step is not disturbed.
 class saved_gl_state {
@@ -53,7 +73,6 @@ class saved_gl_state {
       glActiveTexture(GL_TEXTURE0 + unit);
       glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture_[unit]);
     }
-    glGetIntegerv(GL_POLYGON_MODE, polygon_mode_.data());
     glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pixel_pack_buffer_);
     glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &pixel_unpack_buffer_);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);  // glReadPixels and glTexImage2D use client memory
@@ -70,7 +89,6 @@ class saved_gl_state {
         glDisable(capabilities[i]);
       }
     }
-    glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
     glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pixel_pack_buffer_));
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(pixel_unpack_buffer_));
     for (GLuint unit = 0; unit < texture_units; ++unit) {
@@ -91,7 +109,7 @@ class saved_gl_state {
   static void set_pass_state() {
     for (GLenum capability : capabilities)
       glDisable(capability);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    saved_polygon_mode::fill();
   }
 
   static constexpr GLuint texture_units = 4;  // the passes read at most four textures
@@ -106,7 +124,7 @@ class saved_gl_state {
   GLint vertex_array_ = 0;
   GLint active_texture_ = GL_TEXTURE0;
   std::array<GLint, texture_units> texture_{};
-  std::array<GLint, 2> polygon_mode_{GL_FILL, GL_FILL};
+  [[maybe_unused]] saved_polygon_mode polygon_mode_;  // saved and restored by itself
   GLint pixel_pack_buffer_ = 0;
   GLint pixel_unpack_buffer_ = 0;
   std::array<GLboolean, capabilities.size()> enabled_{};
@@ -188,6 +206,29 @@ void read_texel(GLuint framebuffer, GLenum attachment, int x, int y, float* rgba
   glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read_framebuffer));
   glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pixel_pack_buffer));
 }
+
+#if defined(CLOTHLAB_GL_WEB)
+// The web build's divergence check (gpu_cloth::run): whether one of the first `pending` queries,
+// issued by an earlier batch, found a diverged particle. Reads them only once all their results
+// are in, and then sets pending to 0; false while they are not.
+bool read_pending_checks(const std::vector<GLuint>& queries, int& pending) {
+  const auto count = static_cast<std::size_t>(pending);
+  for (std::size_t s = 0; s < count; ++s) {
+    GLuint available = GL_FALSE;
+    glGetQueryObjectuiv(queries[s], GL_QUERY_RESULT_AVAILABLE, &available);
+    if (available == GL_FALSE)
+      return false;
+  }
+  bool diverged = false;
+  for (std::size_t s = 0; s < count; ++s) {
+    GLuint any_sample = 0;
+    glGetQueryObjectuiv(queries[s], GL_QUERY_RESULT, &any_sample);
+    diverged = diverged || any_sample != 0;
+  }
+  pending = 0;
+  return diverged;
+}
+#endif
 
 // The bit of the offset (du, dv) in a mask: its index in neighbour_offsets. Every spring joins
 // neighbours of the table.
@@ -493,6 +534,7 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
   read_ = 0;
   write_ = 1;
   mask_read_ = 0;
+  pending_checks_ = 0;  // those of another state
   grid_size_ = n;
   normal_program_.use();
   glUniform1i(normal_program_.uniform("grid_size"), n);
@@ -542,7 +584,16 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
       sent_tear_length_ = tear_length;
     }
   }
-  const bool check = speed_bound > 0.0;
+  bool check = speed_bound > 0.0;
+#if defined(CLOTHLAB_GL_WEB)
+  // WebGL2 gives a query's result only once the browser's current task (this frame) has ended,
+  // never to a program that waits for it. So on the web a batch's checks are read by a later
+  // batch, which reports a divergence they found as after its own last step (a diverged cloth
+  // stays so: a NaN stays a NaN); while they are pending, a batch is not checked. The desktop
+  // reads each batch's own checks at its end.
+  const bool earlier_batch_diverged = check && read_pending_checks(queries_, pending_checks_);
+  check = check && pending_checks_ == 0 && !earlier_batch_diverged;
+#endif
   if (check) {
     const auto bound = static_cast<float>(std::min(speed_bound, 1e30));
     if (bound != sent_speed_bound_) {
@@ -587,18 +638,26 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
       mask_read_ = 1 - mask_read_;
     }
 
-    // The divergence check of this step: counted by a query, read after the batch.
+    // The divergence check of this step: a query says whether any fragment (particle) passed,
+    // read after the batch. Nothing is written; the target is a float one, the type of the
+    // shader's output (WebGL refuses a draw whose output and target types differ).
     if (check) {
+      glBindFramebuffer(GL_FRAMEBUFFER, normal_framebuffer_);
       check_program_.use();
       bind_texture(0, position_[read_]);
       bind_texture(1, velocity_[read_]);
       glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-      glBeginQuery(GL_SAMPLES_PASSED, queries_[static_cast<std::size_t>(s)]);
+      glBeginQuery(GL_ANY_SAMPLES_PASSED, queries_[static_cast<std::size_t>(s)]);
       draw_full_screen_pass(grid_size_);
-      glEndQuery(GL_SAMPLES_PASSED);
+      glEndQuery(GL_ANY_SAMPLES_PASSED);
       glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }
   }
+#if defined(CLOTHLAB_GL_WEB)
+  if (check)
+    pending_checks_ = count;
+  return earlier_batch_diverged ? count : 0;
+#else
   if (check) {
     for (int s = 0; s < count; ++s) {
       GLuint diverged = 0;
@@ -608,6 +667,7 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
     }
   }
   return 0;
+#endif
 }
 
 double gpu_cloth::time_steps(const cloth_parameters& p, int count) {
@@ -647,12 +707,16 @@ void gpu_cloth::read_state(spring_mesh& cloth) const {
   read_attachment(GL_COLOR_ATTACHMENT0, particles.position);
   read_attachment(GL_COLOR_ATTACHMENT1, particles.velocity);
 
-  // The springs torn on the GPU leave the CPU cloth too.
-  mask_readback_.resize(count);
+  // The springs torn on the GPU leave the CPU cloth too. The mask is read as RGBA (OpenGL ES
+  // reads an integer target only so): its word k is texel k's red.
+  mask_readback_.resize(4 * count);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, mask_framebuffer_[mask_read_]);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glReadPixels(0, 0, grid_size_, grid_size_, GL_RED_INTEGER, GL_UNSIGNED_INT,
+  glReadPixels(0, 0, grid_size_, grid_size_, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
                mask_readback_.data());
+  for (std::size_t k = 0; k < count; ++k)
+    mask_readback_[k] = mask_readback_[4 * k];
+  mask_readback_.resize(count);
   remove_torn_springs(mask_readback_, cloth);
 }
 

@@ -137,10 +137,11 @@ class gpu_cloth {
   void step(const cloth_parameters& p);
   // `count` steps as one batch: the caller's GL state saved and the uniforms set once. With
   // speed_bound > 0 (m/s) every step is also checked on the GPU, without reading the state
-  // back: an occlusion query counts the particles that are not finite or faster than the bound
+  // back: an occlusion query says whether any particle is not finite or faster than the bound
   // (shaders/gpu_check.frag). Returns the first step of the batch (1..count) after which a
   // particle diverged, 0 when none did (or without the check). The state then is that of the
-  // end of the batch.
+  // end of the batch. In the web build (WebGL2) a query is read only in a later frame: a batch
+  // returns `count` when an earlier batch's check found a diverged particle (see run).
   int run(const cloth_parameters& p, int count, double speed_bound = 0.0);
 
   // Runs `count` steps and returns the mean wall-clock seconds per step, with glFinish before
@@ -177,6 +178,8 @@ class gpu_cloth {
   float sent_speed_bound_ = -1.0f;           // the check pass's
   std::vector<GLuint> queries_;              // one occlusion query per step of a checked batch
   GLuint empty_vertex_array_ = 0;            // the full-screen triangle needs no vertex data
+  // The web build's: how many queries_ an earlier batch issued that are not read yet (run).
+  int pending_checks_ = 0;
 
   // Ping-pong: copy read_ holds the current state, copy write_ receives the next one; they swap
   // after every step. framebuffer_[i] renders into position_[i] (attachment 0) and velocity_[i]

@@ -7,6 +7,32 @@
 #include "gl/gpu_cloth.hpp"
 
 namespace clothlab {
+
+#if defined(CLOTHLAB_GL_WEB)
+// The web build: WebGL2 has no compute shaders (nor OpenGL 4.3's storage buffers and barriers).
+// The path is there, never available, and says why, as on a desktop older than 4.3: the panel
+// shows it greyed with this reason, and nothing of it can be loaded or run.
+bool gpu_cloth_compute::available(std::string& error) {
+  error =
+      "the compute-shader GPU path needs OpenGL 4.3 compute shaders, which WebGL2 (this "
+      "browser's GL) does not have";
+  return false;
+}
+gpu_cloth_compute::~gpu_cloth_compute() = default;
+bool gpu_cloth_compute::load(const spring_mesh&, std::string& error) {
+  return available(error);
+}
+int gpu_cloth_compute::run(const cloth_parameters&, int, double) {
+  throw std::logic_error("gpu_cloth_compute::run called before a successful load");
+}
+void gpu_cloth_compute::read_state(spring_mesh&) const {
+  throw std::logic_error("gpu_cloth_compute::read_state called before a successful load");
+}
+particle_state gpu_cloth_compute::read_particle(std::size_t k) const {
+  check_particle_index("gpu_cloth_compute::read_particle", 0, k);  // throws: never loaded
+  return {};
+}
+#else
 namespace {
 
 template <typename T>
@@ -230,5 +256,7 @@ particle_state gpu_cloth_compute::read_particle(std::size_t k) const {
   return {glm::dvec3(texels[0][0], texels[0][1], texels[0][2]),
           glm::dvec3(texels[1][0], texels[1][1], texels[1][2])};
 }
+
+#endif  // CLOTHLAB_GL_WEB
 
 }  // namespace clothlab

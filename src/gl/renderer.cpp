@@ -12,12 +12,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <span>
 #include <vector>
 
-#include "core/export.hpp"
 #include "gl/render_geometry.hpp"
 #include "gl/shader.hpp"
 
@@ -661,6 +661,9 @@ void renderer::impl::draw_cloth(const frame& f, const spring_mesh& cloth,
     }
     const GLsizei cells = (cloth.grid_size() - 1) * (cloth.grid_size() - 1);
     glBindVertexArray(empty_vao);
+    // The shadow's shader also declares the lines' integer input `texel`, unused here: with no
+    // array it reads the generic value, which WebGL requires to be an integer one too.
+    glVertexAttribI4i(position_or_texel_location, 0, 0, 0, 0);
     glDrawArrays(GL_TRIANGLES, 0, 6 * cells);
     glBindVertexArray(vao);
   };
@@ -854,10 +857,9 @@ void renderer::draw_from_textures(GLuint position_texture, GLuint normal_texture
   glDisable(GL_SCISSOR_TEST);
 }
 
-bool save_framebuffer_png(const std::string& path, int width, int height, std::string& error) {
+bool framebuffer_png(int width, int height, std::vector<unsigned char>& png, std::string& error) {
   if (width < 1 || height < 1) {
-    error =
-        path + ": cannot save a " + std::to_string(width) + "x" + std::to_string(height) + " image";
+    error = "cannot save a " + std::to_string(width) + "x" + std::to_string(height) + " image";
     return false;
   }
   const auto row_bytes = static_cast<std::size_t>(width) * 4;
@@ -873,13 +875,35 @@ bool save_framebuffer_png(const std::string& path, int width, int height, std::s
   }
   for (std::size_t i = 3; i < image.size(); i += 4)
     image[i] = 255;
-  if (stbi_write_png(path.c_str(), width, height, 4, image.data(), static_cast<int>(row_bytes)) ==
-      0) {
+  // stb's encoder hands the PNG over in pieces, appended to `png`.
+  png.clear();
+  const auto append = [](void* context, void* data, int size) {
+    auto& bytes = *static_cast<std::vector<unsigned char>*>(context);
+    const auto* first = static_cast<const unsigned char*>(data);
+    bytes.insert(bytes.end(), first, first + size);
+  };
+  if (stbi_write_png_to_func(append, &png, width, height, 4, image.data(),
+                             static_cast<int>(row_bytes)) == 0) {
+    error = "cannot encode the PNG image";
+    return false;
+  }
+  return true;
+}
+
+bool save_framebuffer_png(const std::string& path, int width, int height, std::string& error) {
+  std::vector<unsigned char> png;
+  if (!framebuffer_png(width, height, png, error)) {
+    error = path + ": " + error;
+    return false;
+  }
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (file == nullptr) {
     error = path + ": cannot write the PNG image";
     return false;
   }
-  // stb's writer does not report a failed write (a full disk): the file must be a whole PNG.
-  if (!png_file_is_whole(path)) {
+  // Every write checked: a full disk must not leave a truncated PNG behind.
+  const bool written = std::fwrite(png.data(), 1, png.size(), file) == png.size();
+  if (std::fclose(file) != 0 || !written) {
     std::error_code ignored;
     if (std::filesystem::is_regular_file(path, ignored))  // never a device such as /dev/full
       std::filesystem::remove(path, ignored);

@@ -8,6 +8,29 @@
 namespace clothlab {
 namespace {
 
+// The first lines of every shader. The files of shaders/ begin without a #version line, so that
+// one file serves both GL dialects: they are written in the subset common to GLSL 3.30 core and
+// GLSL ES 3.00 (docs/gpu.md). The desktop compiles them as GLSL 3.30 core (OpenGL 3.3), and its
+// compute shaders as 4.30 core (OpenGL 4.3). The web build compiles them as GLSL ES 3.00
+// (WebGL2), where precisions are declared: float has no default in a fragment shader, int there
+// defaults to mediump, sampler2D to lowp, and usampler2D has none. Its header gives every type
+// the shaders use highp, the desktop's precision (a shader using another sampler type needs its
+// line here). tests/render/check_shader_dialects.py reads these three strings from here and
+// checks every shader with each (glslangValidator).
+[[maybe_unused]] constexpr std::string_view desktop_header = "#version 330 core\n";
+[[maybe_unused]] constexpr std::string_view desktop_compute_header = "#version 430 core\n";
+[[maybe_unused]] constexpr std::string_view web_header =
+    "#version 300 es\n"
+    "precision highp float;\n"
+    "precision highp int;\n"
+    "precision highp sampler2D;\n"
+    "precision highp usampler2D;\n";
+#if defined(CLOTHLAB_GL_WEB)
+constexpr std::string_view vertex_and_fragment_header = web_header;
+#else
+constexpr std::string_view vertex_and_fragment_header = desktop_header;
+#endif
+
 std::filesystem::path executable_directory() {
   std::error_code ec;
   auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
@@ -59,16 +82,26 @@ bool expand_includes(const std::filesystem::path& path, std::string& source, std
   return true;
 }
 
-// Compiles one stage; returns 0 and sets error on failure.
-GLuint compile(GLenum type, std::string_view file_name, std::string& error) {
+// Compiles one stage, the file after `header` (its #version line); returns 0 and sets error on
+// failure.
+GLuint compile(GLenum type, std::string_view header, std::string_view file_name,
+               std::string& error) {
   const auto path = shader_path(file_name);
   std::string source;
   if (!read_text(path, source)) {
     error = path.string() + ": cannot read the shader file";
     return 0;
   }
+  if (source.starts_with("#version")) {
+    error = path.string() +
+            ": begins with a #version line; remove it, the loader adds the version "
+            "(src/gl/shader.cpp)";
+    return 0;
+  }
   if (!expand_includes(path, source, error))
     return 0;
+  // "#line 1 0": the file's first line is line 1 in the compiler's messages, as in an editor.
+  source = std::string(header) + "#line 1 0\n" + source;
   GLuint shader = glCreateShader(type);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
@@ -127,10 +160,10 @@ shader_program& shader_program::operator=(shader_program&& other) noexcept {
 
 bool shader_program::load(std::string_view vertex_file, std::string_view fragment_file,
                           std::string& error) {
-  GLuint vertex = compile(GL_VERTEX_SHADER, vertex_file, error);
+  GLuint vertex = compile(GL_VERTEX_SHADER, vertex_and_fragment_header, vertex_file, error);
   if (vertex == 0)
     return false;
-  GLuint fragment = compile(GL_FRAGMENT_SHADER, fragment_file, error);
+  GLuint fragment = compile(GL_FRAGMENT_SHADER, vertex_and_fragment_header, fragment_file, error);
   if (fragment == 0) {
     glDeleteShader(vertex);
     return false;
@@ -140,10 +173,16 @@ bool shader_program::load(std::string_view vertex_file, std::string_view fragmen
 }
 
 bool shader_program::load_compute(std::string_view compute_file, std::string& error) {
-  GLuint compute = compile(GL_COMPUTE_SHADER, compute_file, error);
+#if defined(CLOTHLAB_GL_WEB)
+  error = shader_path(compute_file).string() +
+          ": a compute shader needs OpenGL 4.3, and WebGL2 has no compute shaders";
+  return false;
+#else
+  GLuint compute = compile(GL_COMPUTE_SHADER, desktop_compute_header, compute_file, error);
   if (compute == 0)
     return false;
   return link({compute}, shader_path(compute_file).string(), error);
+#endif
 }
 
 bool shader_program::link(std::initializer_list<GLuint> shaders, const std::string& files,

@@ -1,5 +1,7 @@
 // GLSL programs loaded from the files of shaders/. A file that is missing or does not compile or
 // link gives an error naming the file and carrying the compiler's log; nothing is drawn with it.
+// The files have no #version line: the loader puts the one of the build's GL before them
+// (shader.cpp), and the compiler's line numbers are those of the file.
 #pragma once
 
 #include <filesystem>
@@ -31,7 +33,8 @@ class shader_program {
   // Compiles shaders/<vertex_file> and shaders/<fragment_file> and links them. On failure returns
   // false and sets error to "shaders/<file>: <what> ... <info log>".
   bool load(std::string_view vertex_file, std::string_view fragment_file, std::string& error);
-  // Compiles and links the compute shader shaders/<compute_file> (OpenGL 4.3); same errors.
+  // Compiles and links the compute shader shaders/<compute_file> (OpenGL 4.3); same errors. The
+  // web build has no compute shaders (WebGL2): there it returns false with an error saying so.
   bool load_compute(std::string_view compute_file, std::string& error);
 
   GLuint id() const { return id_; }

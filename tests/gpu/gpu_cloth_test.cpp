@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/spring_mesh.hpp"
+#include "gl/cloth_paths.hpp"
 #include "gl/gl.hpp"
 #include "gl/gl_context.hpp"
 #include "gl/gpu_cloth.hpp"
@@ -324,6 +327,42 @@ TEST_F(GpuCloth, StepLeavesTheCallersGlStateAsItFoundIt) {
   spring_mesh result(p);
   gpu.read_state(result);
   EXPECT_LE(max_position_difference(cloth, result), 1e-6);
+}
+
+// cloth_paths::read_normals reads the drawn normal texture through a framebuffer (OpenGL ES, the
+// web build's GL, has no glGetTexImage): the texture's texels, on each GPU path that runs here,
+// with the caller's read framebuffer bound again.
+TEST_F(GpuCloth, ReadNormalsGivesTheTexelsOfTheDrawnNormalTexture) {
+  cloth_parameters p = small_cloth();
+  p.wind_strength = 3.0;
+  cloth_paths paths(p);
+  paths.check_compute_offered();
+  GLuint callers_framebuffer = 0;
+  glGenFramebuffers(1, &callers_framebuffer);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, callers_framebuffer);
+  for (const cloth_backend backend : {cloth_backend::gpu, cloth_backend::gpu_compute}) {
+    std::string error;
+    if (backend == cloth_backend::gpu_compute && !paths.compute_offered(error)) {
+      std::printf("  no compute path here: %s\n", error.c_str());
+      continue;
+    }
+    ASSERT_TRUE(paths.load(backend, error)) << error;
+    paths.run(20);
+    std::vector<float> normals;
+    paths.read_normals(normals);
+    GLint bound = 0;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &bound);
+    EXPECT_EQ(static_cast<GLuint>(bound), callers_framebuffer);
+    std::vector<float> texels(normals.size());
+    glBindTexture(GL_TEXTURE_2D, paths.textures().normal);
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texels.data());
+    glBindTexture(GL_TEXTURE_2D, 0);
+    EXPECT_EQ(normals, texels);
+    EXPECT_GT(std::abs(normals[0]) + std::abs(normals[1]) + std::abs(normals[2]), 0.5f);  // unit
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &callers_framebuffer);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 TEST_F(GpuCloth, GridTooLargeForTheTexturesIsRefusedNamingNAndTheLimit) {

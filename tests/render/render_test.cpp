@@ -17,6 +17,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@
 #include "gl/camera.hpp"
 #include "gl/gl.hpp"
 #include "gl/gl_context.hpp"
+#include "gl/gpu_cloth.hpp"
 #include "gl/renderer.hpp"
 #include "gl/shader.hpp"
 #include "image.hpp"
@@ -398,6 +400,23 @@ TEST_F(RenderTest, SavedPngHoldsTheFramebufferTopRowFirst) {
   EXPECT_GT(blueness(0), blueness(height - 1) + 15);
 }
 
+// The web build's P key downloads the PNG from memory: the same bytes as the saved file.
+TEST_F(RenderTest, PngInMemoryHasTheBytesOfTheSavedFile) {
+  render_cloth();
+  std::vector<unsigned char> png;
+  std::string error;
+  ASSERT_TRUE(framebuffer_png(width, height, png, error)) << error;
+  const auto path = std::filesystem::current_path() / "render-output" / "in-memory.png";
+  std::filesystem::create_directories(path.parent_path());
+  ASSERT_TRUE(save_framebuffer_png(path.string(), width, height, error)) << error;
+  std::ifstream file(path, std::ios::binary);
+  const std::vector<unsigned char> saved((std::istreambuf_iterator<char>(file)),
+                                         std::istreambuf_iterator<char>());
+  EXPECT_EQ(png, saved);
+  EXPECT_FALSE(framebuffer_png(0, height, png, error));
+  EXPECT_NE(error.find("0x" + std::to_string(height)), std::string::npos) << error;
+}
+
 TEST_F(RenderTest, SavingToAnUnwritablePathNamesThePath) {
   std::string error;
   EXPECT_FALSE(save_framebuffer_png("/nonexistent-folder/x.png", width, height, error));
@@ -442,12 +461,45 @@ TEST_F(BrokenDataTest, MissingShaderIsNamed) {
 }
 
 TEST_F(BrokenDataTest, ShaderThatDoesNotCompileIsNamedWithItsLog) {
-  overwrite(data_ / "shaders" / "draw_ground.frag", "#version 330 core\nvoid main() { oops; }\n");
+  overwrite(data_ / "shaders" / "draw_ground.frag", "void main() { oops; }\n");
   renderer r;
   std::string error;
   EXPECT_FALSE(r.init(error));
   EXPECT_NE(error.find("draw_ground.frag"), std::string::npos) << error;
   EXPECT_NE(error.find("oops"), std::string::npos) << error;
+}
+
+// The loader puts the #version line before the file: the compiler's line numbers are still the
+// file's own ("0:3(" in Mesa's log, "0(3)" in others'), also below an #include.
+TEST_F(BrokenDataTest, ShaderErrorsGiveTheFilesOwnLineNumbers) {
+  const auto names_line = [](const std::string& log, int line) {
+    const std::string n = std::to_string(line);
+    return log.find("0:" + n + "(") != std::string::npos ||
+           log.find("0(" + n + ")") != std::string::npos;
+  };
+  overwrite(data_ / "shaders" / "draw_ground.frag", "// line 1\n\nvoid main() { oops; }\n");
+  renderer r;
+  std::string error;
+  EXPECT_FALSE(r.init(error));
+  EXPECT_NE(error.find("draw_ground.frag"), std::string::npos) << error;
+  EXPECT_TRUE(names_line(error, 3)) << error;
+
+  overwrite(data_ / "shaders" / "gpu_step.frag",
+            "// line 1\n#include \"gpu_cloth_common.glsl\"\nvoid main() {\n  oops;\n}\n");
+  gpu_cloth gpu;
+  spring_mesh cloth(cloth_parameters{});
+  EXPECT_FALSE(gpu.load(cloth, error));
+  EXPECT_NE(error.find("gpu_step.frag"), std::string::npos) << error;
+  EXPECT_TRUE(names_line(error, 4)) << error;
+}
+
+TEST_F(BrokenDataTest, ShaderWithItsOwnVersionLineIsRefusedSayingSo) {
+  overwrite(data_ / "shaders" / "draw_ground.frag", "#version 330 core\nvoid main() {}\n");
+  renderer r;
+  std::string error;
+  EXPECT_FALSE(r.init(error));
+  EXPECT_NE(error.find("draw_ground.frag: begins with a #version line"), std::string::npos)
+      << error;
 }
 
 TEST_F(BrokenDataTest, BrokenTextureIsNamed) {
