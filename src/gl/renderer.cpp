@@ -456,16 +456,20 @@ void renderer::impl::set_ground_uniforms(const shader_program& program, const fr
 
 // Polygon offsets (glPolygonOffset's units, the depth buffer's smallest step) of what lies on
 // the ground plane, from the nearest: the cloth's back side (a folded layer, back up, wins a tie
-// with the layer under it), its front side, the cloth's shadow, the ground (factor 2: 8).
+// with the layer under it), its front side, the cloth's shadow, the ground (factor 2). The
+// ground lies far behind the shadow: its one large quad and the shadow's small triangles
+// interpolate depth differently, by several units on SwiftShader (the browser's WebGL on the
+// CPU), where a gap of 2 units let the ground show through the shadow in patches.
 constexpr float back_offset_units = 1.0f;
 constexpr float front_offset_units = 4.0f;
 constexpr float shadow_offset_units = 6.0f;
+constexpr float ground_offset_units = 32.0f;
 
 void renderer::impl::draw_ground(const frame& f, float height, const glm::vec2& centre) {
   set_ground_uniforms(ground_program, f, height, centre, 1.0f);
   // Pushed back in depth so that cloth lying on the ground (z = z_g exactly) stays in front.
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(2.0f, 8.0f);
+  glPolygonOffset(2.0f, ground_offset_units);
   glBindVertexArray(ground_vao);
   glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
   glDisable(GL_POLYGON_OFFSET_FILL);

@@ -53,7 +53,7 @@ EM_JS(void, set_page_status, (const char* stage, const char* backend, int grid_s
 
 void publish_status(const scene& the_scene) {
   const std::string stage(stage_name(the_scene.stage()));
-  set_page_status(stage.c_str(), backend_name(the_scene.backend()),
+  set_page_status(stage.c_str(), backend_option(the_scene.backend()),
                   the_scene.cloth_stage.parameters.grid_size, the_scene.status().time,
                   static_cast<double>(the_scene.steps_taken()), the_scene.steps_per_second(),
                   the_scene.frames_per_second(), the_scene.status().diverged ? 1 : 0);
