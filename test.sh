@@ -56,12 +56,23 @@ fi
 # END TEACHER
 "$root/scripts/setup.sh" Release "${web[@]}"
 if [ ${#web[@]} -gt 0 ]; then
-  "$root/scripts/setup-web.sh" --with-browser
+  # The page builds while the other tests run (the browser tests, last, wait for it to end:
+  # build-web/build.status); its output goes to build-web/build.log.
+  mkdir -p "$root/build-web"
+  rm -f "$root/build-web/build.status"
+  "$root/scripts/setup-web.sh" --with-browser >"$root/build-web/build.log" 2>&1 &
+  web_build=$!
+  echo "$web_build" >"$root/build-web/build.pid"  # (before any test can look for it)
 fi
 status=0
 (cd "$root/build" &&
   ctest --output-on-failure --timeout 300 -j 2 --output-junit "$root/build/test-results.xml" "$@") ||
   status=$?
+if [ ${#web[@]} -gt 0 ] && ! wait "$web_build"; then
+  echo "clothlab: the browser build failed; the end of build-web/build.log:" >&2
+  tail -n 30 "$root/build-web/build.log" >&2
+  status=1
+fi
 python3 "$root/scripts/lab-report" "$root/build" "$root/build/test-results.xml"
 [ "$status" -eq 0 ] || exit "$status"
 

@@ -10,6 +10,14 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 web=$root/build-web
 
+# For the browser test, which may start while this runs (./test.sh builds the page while the
+# other tests run): build.pid names this build while it runs, build.status holds its exit status
+# once it has ended (tests/web/browser.py, wait_for_page_build).
+mkdir -p "$web"
+rm -f "$web/build.status"
+echo $$ >"$web/build.pid"
+trap 'echo $? >"$web/build.status.new" && mv "$web/build.status.new" "$web/build.status"' EXIT
+
 packages=(emscripten cmake make python3 libimgui-dev libglm-dev libstb-dev)
 if [ "${1:-}" = "--with-browser" ]; then
   packages+=(chromium chromium-driver)

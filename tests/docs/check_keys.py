@@ -3,7 +3,7 @@
 
 The README's "Keys and mouse" table is the one key table of the project: every key in its first
 column (`1 / 2 / 3` is three keys) must be handled by the window's key callback
-(`case GLFW_KEY_...:` in src/window/window_main.cpp), every key handled there must be listed,
+(`case GLFW_KEY_...:` in src/window/window_app.cpp), every key handled there must be listed,
 and no other document may hold a second key table."""
 import re
 import sys
@@ -30,11 +30,11 @@ else:
                 key = key.strip()
                 documented.add(NAMES.get(key.lower(), key.upper()))
 
-source = (root / "src/window/window_main.cpp").read_text()
+source = (root / "src/window/window_app.cpp").read_text()
 handled = set(re.findall(r"case GLFW_KEY_(\w+):", source))
 for key in sorted(documented - handled):
     problems.append(f"README.md lists the key {key}, which the window does not handle "
-                    "(no 'case GLFW_KEY_" + key + ":' in src/window/window_main.cpp)")
+                    "(no 'case GLFW_KEY_" + key + ":' in src/window/window_app.cpp)")
 for key in sorted(handled - documented):
     problems.append(f"the window handles the key {key}, which README.md's key table does not "
                     "list")

@@ -93,9 +93,13 @@ def main():
                     check(not re.search(pattern, code),
                           f"{header.relative_to(dest)} declares {pattern!r}: a student could "
                           "call it instead of answering")
+            # The copy's cloth_parallel.cpp is its stand-in, cloth_parallel_absent.cpp, which
+            # says the path is in the teacher's copy.
             parallel = (dest / "src/core/cloth_parallel.cpp").read_text()
-            check("in the teacher's copy" in (dest / "src/core/cloth_parallel.hpp").read_text()
-                  and "return false;" in parallel and "#pragma omp" not in parallel,
+            absent = (dest / "src/core/cloth_parallel_absent.cpp").read_text()
+            check('#include "core/cloth_parallel_absent.cpp"' in parallel
+                  and "#pragma omp" not in parallel and "in the teacher's copy" in absent
+                  and "return false;" in absent and "#pragma omp" not in absent,
                   "the copy's cloth_parallel.cpp is not the stub that names the teacher's copy")
             check(not (dest / "tests/model").exists() and
                   not (dest / "shaders/gpu_compute_step.comp").exists(),

@@ -56,6 +56,29 @@ def static_server(site):
         server.server_close()
 
 
+def wait_for_page_build(web_folder):
+    """Waits while scripts/setup-web.sh builds the page (./test.sh runs it beside the other
+    tests): until build.status says how it ended. Returns None when the page can be opened,
+    else what went wrong. A build that is not running and left no status (the page built some
+    other way, or never) is left to the caller."""
+    status_path = os.path.join(web_folder, "build.status")
+    pid_path = os.path.join(web_folder, "build.pid")
+    while not os.path.exists(status_path):
+        try:
+            pid = int(open(pid_path).read())
+            os.kill(pid, 0)  # the build still runs
+        except (OSError, ValueError):
+            if os.path.exists(status_path):
+                break
+            return None
+        time.sleep(0.5)
+    status = open(status_path).read().strip()
+    if status != "0":
+        return (f"the page's build failed (scripts/setup-web.sh, exit {status}): see "
+                f"{os.path.join(web_folder, 'build.log')} or run ./run.sh --web-build-only")
+    return None
+
+
 def find_browser():
     """chromium and chromedriver, or a browser_error saying what is missing and how to get it."""
     chromium = shutil.which("chromium") or "/usr/bin/chromium"

@@ -102,6 +102,10 @@ def main():
     parser.add_argument("--out", help="a folder to keep the screenshots in")
     parser.add_argument("--update-reference", action="store_true")
     args = parser.parse_args()
+    problem = browser.wait_for_page_build(os.path.dirname(os.path.abspath(args.site)))
+    if problem:
+        print(f"FAIL: {problem}")
+        return 1
     if not os.path.isfile(os.path.join(args.site, "clothlab.wasm")) and \
             not os.path.isfile(os.path.join(args.site, "index.html")):
         print(f"FAIL: the page is not built ({args.site} is empty or missing): ./test.sh builds "
