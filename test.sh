@@ -50,7 +50,7 @@ web=()
 # BEGIN TEACHER
 # CI (no arguments), or a run of the web tests (-L web): the browser build first, for the tests
 # that open it in headless chromium (tests/web).
-if [ $# -eq 0 ] || [[ " $* " == *" web "* ]]; then
+if [ $# -eq 0 ] || [[ "$*" == *web* ]]; then
   web=(--with-web)
 fi
 # END TEACHER
