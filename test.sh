@@ -2,7 +2,8 @@
 # Sets clothlab up (missing Debian packages, Release build in build/) and runs every test with
 # ctest: physics, command line, off-screen screenshots, GPU paths, the window under Xvfb, and the
 # lab's grader (labels q5 ... q13), then prints the table of the lab's questions. In the
-# teacher's copy, a plain run then builds the same sources with AddressSanitizer and
+# teacher's copy, a plain run also builds the browser version (build-web/) and opens it in
+# headless chromium (label web, docs/web.md), then builds the same sources with AddressSanitizer and
 # UndefinedBehaviorSanitizer (in build-sanitize/) and runs the core, cli, model and stability
 # tests there: a finding fails the run.
 #   ./test.sh [ctest options]             e.g. ./test.sh -L q8 (one question; no sanitizer run)
@@ -46,33 +47,36 @@ if [ "${1:-}" = "--sanitize" ]; then
   exit
 fi
 
-web=()
 # BEGIN TEACHER
-# CI (no arguments), or a run of the web tests (-L web): the browser build first, for the tests
-# that open it in headless chromium (tests/web).
+# CI (no arguments), or a run naming the web tests (-L web): the browser build too, for the
+# tests that open it in headless chromium (tests/web). Its packages come with the others; the
+# page builds while the other tests run (the browser tests, last, wait for it to end:
+# build-web/build.status); its output goes to build-web/build.log.
+web=()
 if [ $# -eq 0 ] || [[ "$*" == *web* ]]; then
   web=(--with-web)
 fi
-# END TEACHER
 "$root/scripts/setup.sh" Release "${web[@]}"
 if [ ${#web[@]} -gt 0 ]; then
-  # The page builds while the other tests run (the browser tests, last, wait for it to end:
-  # build-web/build.status); its output goes to build-web/build.log.
   mkdir -p "$root/build-web"
   rm -f "$root/build-web/build.status"
   "$root/scripts/setup-web.sh" --with-browser >"$root/build-web/build.log" 2>&1 &
   web_build=$!
   echo "$web_build" >"$root/build-web/build.pid"  # (before any test can look for it)
 fi
+# END TEACHER
+# COPY| "$root/scripts/setup.sh" Release
 status=0
 (cd "$root/build" &&
   ctest --output-on-failure --timeout 300 -j 2 --output-junit "$root/build/test-results.xml" "$@") ||
   status=$?
+# BEGIN TEACHER
 if [ ${#web[@]} -gt 0 ] && ! wait "$web_build"; then
   echo "clothlab: the browser build failed; the end of build-web/build.log:" >&2
   tail -n 30 "$root/build-web/build.log" >&2
   status=1
 fi
+# END TEACHER
 python3 "$root/scripts/lab-report" "$root/build" "$root/build/test-results.xml"
 [ "$status" -eq 0 ] || exit "$status"
 
