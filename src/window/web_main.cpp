@@ -65,7 +65,8 @@ void frame(void* /*unused*/) {
 }
 
 // clang-format off
-// Hands `size` bytes of PNG to the browser as a download named `name`.
+// Hands `size` bytes of PNG to the browser as a download named `name`, and notes it in
+// window.clothlab.downloads (the browser test reads the image back from its address).
 EM_JS(void, download_png, (const unsigned char* bytes, int size, const char* name), {
   const blob = new Blob([HEAPU8.slice(bytes, bytes + size)], {type: 'image/png'});
   const link = document.createElement('a');
@@ -74,7 +75,9 @@ EM_JS(void, download_png, (const unsigned char* bytes, int size, const char* nam
   document.body.appendChild(link);
   link.click();
   link.remove();
-  setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+  const page = window.clothlab || (window.clothlab = {});
+  (page.downloads || (page.downloads = [])).push({name: link.download, url: link.href, size: size});
+  setTimeout(() => URL.revokeObjectURL(link.href), 60000);
 });
 // clang-format on
 

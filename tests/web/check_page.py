@@ -13,12 +13,15 @@ Checks, in order, each waiting for the page (never for a fixed time):
   5. N (pause after one step) then R (reset): the initial cloth, whose picture (the scene, right
      of the panel) matches tests/web/reference/initial_cloth.png within a tolerance, and is
      neither blank nor NaN-coloured;
-  6. still no error on the console (the page's and the browser's, WebGL's warnings included).
+  6. P downloads a PNG of the canvas's size, with the scene in it;
+  7. the mouse: a drag on the sky orbits the view, a drag that starts on the cloth grabs it;
+  8. still no error on the console (the page's and the browser's, WebGL's warnings included).
 Exit status 0 when all pass, 1 at the first failure (what failed, in a sentence), 2 for bad
 usage. --out DIR keeps the screenshots; --update-reference rewrites the reference from this run
 (after a change that moves the picture on purpose: look at it before committing it).
 """
 import argparse
+import base64
 import os
 import sys
 
@@ -31,6 +34,9 @@ width, height = 1280, 800
 bar_height = 22  # web/index.html: the status bar under the canvas
 # The scene, right of the panel (410 px wide at the default font) and inside the canvas.
 scene_box = (430, 10, width - 440, height - bar_height - 20)  # left, top, width, height
+# A point of the initial cloth, in page pixels (tests/web/reference/initial_cloth.png, plus
+# scene_box's corner).
+cloth_point = (430 + 520, 10 + 255)
 tolerance = 40  # per channel, of 255: SwiftShader versions round differently
 max_differing_fraction = 0.01
 
@@ -94,6 +100,73 @@ def picture_problems(scene, reference, measured=None):
         return (f"{100 * differing / count:.1f}% of the scene's pixels differ from the reference "
                 f"by more than {tolerance}/255 (at most {100 * max_differing_fraction:.0f}% may)")
     return None
+
+
+def check_screenshot_key(page, out):
+    """P: the page hands the frame to the browser as a PNG download of the canvas's size."""
+    page.press("p")
+    download = page.wait_for("const d = window.clothlab.downloads; return d && d[0];",
+                             "key P: a screenshot downloaded", timeout=60)
+    png = page.run_async("""
+        const done = arguments[arguments.length - 1];
+        fetch(arguments[0]).then((r) => r.arrayBuffer()).then((b) => {
+          let s = ''; new Uint8Array(b).forEach((v) => { s += String.fromCharCode(v); });
+          done(btoa(s));
+        }).catch((e) => done('error: ' + e));""", download["url"])
+    if png.startswith("error"):
+        raise failure(f"key P: the download {download['name']} cannot be read back: {png}")
+    image = browser.read_png(base64.b64decode(png))
+    canvas = page.run("const c = document.getElementById('canvas'); return [c.width, c.height];")
+    if [image.width, image.height] != canvas:
+        raise failure(f"key P: {download['name']} is {image.width} x {image.height}, the canvas "
+                      f"{canvas[0]} x {canvas[1]}")
+    problem = picture_problems(image.crop(*scene_box), None)
+    if problem:
+        raise failure(f"key P: {download['name']}: {problem}")
+    if out:
+        image.write_png(os.path.join(out, "key_p_download.png"))
+    print(f"ok: P downloads {download['name']}, {image.width} x {image.height}, the scene in it")
+
+
+def drag(page, start, end, shift=False):
+    """A left-button drag from `start` to `end` (page pixels), in steps, Shift held if asked."""
+    steps = [{"type": "pointerMove", "duration": 0, "x": start[0], "y": start[1]},
+             {"type": "pointerDown", "button": 0}]
+    for i in range(1, 9):
+        steps.append({"type": "pointerMove", "duration": 30,
+                      "x": start[0] + (end[0] - start[0]) * i // 8,
+                      "y": start[1] + (end[1] - start[1]) * i // 8})
+    steps.append({"type": "pointerUp", "button": 0})
+    actions = [{"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
+                "actions": steps}]
+    if shift:
+        keys = [{"type": "keyDown", "value": "\ue008"}] + \
+            [{"type": "pause", "duration": 0}] * (len(steps) - 1) + \
+            [{"type": "keyUp", "value": "\ue008"}]
+        actions.append({"type": "key", "id": "keyboard", "actions": keys})
+    page._call("POST", page._session + "/actions", {"actions": actions})
+
+
+def check_mouse(page, seen):
+    """The mouse, as on the desktop: a drag on the sky orbits the camera, a drag that starts
+    on the cloth grabs it (the window prints each drag's end: window.clothlab.log)."""
+    log_length = page.run("return window.clothlab.log.length")
+    drag(page, (1100, 80), (900, 120))
+    orbit = wait_log(page, log_length, "left drag ended (orbit)", "a drag on the sky", seen)
+    log_length = page.run("return window.clothlab.log.length")
+    drag(page, cloth_point, (cloth_point[0], cloth_point[1] - 60))
+    wait_log(page, log_length, "left drag ended (grab)", "a drag on the cloth", seen)
+    print(f"ok: the mouse orbits the view and grabs the cloth ({orbit.split(': ', 1)[1]})")
+
+
+def wait_log(page, start, text, what, seen):
+    script = (f"return window.clothlab.log.slice({start})"
+              f".find((line) => line.includes({text!r}));")
+    try:
+        return page.wait_for(script, f"{what}: the line '{text}'", timeout=30)
+    except browser.browser_error as e:
+        lines = page.run(f"return window.clothlab.log.slice({start})")
+        raise failure(f"{e}; the page printed {lines}") from None
 
 
 def main():
@@ -170,6 +243,8 @@ def main():
             print(f"ok: the canvas shows the initial cloth ({100 * measured['differing']:.2f}% of "
                   f"its pixels differ from the reference by more than {tolerance}/255; at most "
                   f"{100 * max_differing_fraction:.0f}% may)")
+            check_screenshot_key(page, args.out)
+            check_mouse(page, seen)
             errors = console_errors(page, seen)
             if errors:
                 raise failure(f"the console has {len(errors)} error(s), the first: {errors[0]}")
