@@ -4,10 +4,12 @@
 // and runs one frame per animation frame of the page. What the desktop has and the browser has
 // not (docs/web.md): the command line, files (P downloads the screenshot), threads (the
 // cpu-parallel path and the stability map's worker threads), compute shaders.
+#include <backends/imgui_impl_glfw.h>
 #include <emscripten.h>
 #include <emscripten/html5.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -57,6 +59,17 @@ void publish_status(const scene& the_scene) {
                   the_scene.cloth_stage.parameters.grid_size, the_scene.status().time,
                   static_cast<double>(the_scene.steps_taken()), the_scene.steps_per_second(),
                   the_scene.frames_per_second(), the_scene.status().diverged ? 1 : 0);
+}
+
+// emscripten 3.1.6's GLFW hands on the browser's wheel deltas as they are: pixels (about 100 a
+// notch in Chromium; lines, 3 a notch, in Firefox), positive downwards. GLFW's are notches,
+// positive away from the user, as the panel (Dear ImGui) and the zoom expect. Installed after
+// Dear ImGui's callback, it converts, then calls it (which calls the window's own).
+void on_browser_wheel(GLFWwindow* window, double x, double y) {
+  const auto notches = [](double delta) {
+    return -(std::abs(delta) >= 10.0 ? delta / 100.0 : delta / 3.0);
+  };
+  ImGui_ImplGlfw_ScrollCallback(window, notches(x), notches(y));
 }
 
 void frame(void* /*unused*/) {
@@ -150,6 +163,7 @@ int main() {
     std::fprintf(stderr, "clothlab: %s\n", error.c_str());
     return 1;
   }
+  glfwSetScrollCallback(page.context->window(), on_browser_wheel);
   // One frame per animation frame of the page; main returns and the page lives on.
   emscripten_set_main_loop_arg(frame, nullptr, 0, false);
   return 0;

@@ -14,7 +14,8 @@ Checks, in order, each waiting for the page (never for a fixed time):
      of the panel) matches tests/web/reference/initial_cloth.png within a tolerance, and is
      neither blank nor NaN-coloured;
   6. P downloads a PNG of the canvas's size, with the scene in it;
-  7. the mouse: a drag on the sky orbits the view, a drag that starts on the cloth grabs it;
+  7. the mouse: one notch of the wheel zooms in by the window's step; a drag on the sky orbits
+     the view, a drag that starts on the cloth grabs it;
   8. still no error on the console (the page's and the browser's, WebGL's warnings included).
 Exit status 0 when all pass, 1 at the first failure (what failed, in a sentence), 2 for bad
 usage. --out DIR keeps the screenshots; --update-reference rewrites the reference from this run
@@ -126,6 +127,33 @@ def check_screenshot_key(page, out):
     if out:
         image.write_png(os.path.join(out, "key_p_download.png"))
     print(f"ok: P downloads {download['name']}, {image.width} x {image.height}, the scene in it")
+
+
+def red_pixels(image):
+    """The pixels of the cloth's red squares (nothing else in the scene is that red)."""
+    p = image.pixels
+    return sum(1 for i in range(0, len(p), 3) if p[i] > 150 and p[i + 1] < 90 and p[i + 2] < 90)
+
+
+def check_wheel(page, before):
+    """The wheel, one notch towards the screen, zooms in by the window's step (x 1/0.9): the
+    cloth covers about 1/0.9^2 = 1.23 times as many pixels (the browser's wheel deltas, pixels
+    and downwards, converted to GLFW's notches: web_main.cpp)."""
+    frames = page.run("return window.clothlab.frames")
+    page._call("POST", page._session + "/actions", {"actions": [
+        {"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
+         "actions": [{"type": "pointerMove", "duration": 0, "x": cloth_point[0],
+                      "y": cloth_point[1] + 200}]},
+        {"type": "wheel", "id": "wheel", "actions": [
+            {"type": "scroll", "x": cloth_point[0], "y": cloth_point[1] + 200, "deltaX": 0,
+             "deltaY": -100, "duration": 0}]}]})
+    page.wait_for(f"return window.clothlab.frames >= {frames} + 3", "frames after the wheel", 60)
+    after = page.screenshot().crop(*scene_box)
+    ratio = red_pixels(after) / max(red_pixels(before), 1)
+    if not 1.1 <= ratio <= 1.4:
+        raise failure(f"one notch of the wheel made the cloth cover {ratio:.2f} times as many "
+                      "pixels (a zoom of 1/0.9 gives about 1.23)")
+    print(f"ok: one notch of the wheel zooms in (the cloth covers {ratio:.2f} x the pixels)")
 
 
 def drag(page, start, end, shift=False):
@@ -244,6 +272,7 @@ def main():
                   f"its pixels differ from the reference by more than {tolerance}/255; at most "
                   f"{100 * max_differing_fraction:.0f}% may)")
             check_screenshot_key(page, args.out)
+            check_wheel(page, scene)
             check_mouse(page, seen)
             errors = console_errors(page, seen)
             if errors:
