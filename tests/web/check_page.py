@@ -157,22 +157,35 @@ def check_wheel(page, before):
 
 
 def drag(page, start, end, shift=False):
-    """A left-button drag from `start` to `end` (page pixels), in steps, Shift held if asked."""
-    steps = [{"type": "pointerMove", "duration": 0, "x": start[0], "y": start[1]},
-             {"type": "pointerDown", "button": 0}]
-    for i in range(1, 9):
-        steps.append({"type": "pointerMove", "duration": 30,
-                      "x": start[0] + (end[0] - start[0]) * i // 8,
-                      "y": start[1] + (end[1] - start[1]) * i // 8})
-    steps.append({"type": "pointerUp", "button": 0})
-    actions = [{"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
-                "actions": steps}]
+    """A left-button drag from `start` to `end` (page pixels), Shift held if asked. The window
+    reads the button's state once a frame, so each move waits for the page's next frame (a drag
+    quicker than a frame would go unseen on a loaded machine)."""
+    def act(source):
+        page._call("POST", page._session + "/actions", {"actions": [source]})
+
+    def pointer(*steps):
+        act({"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
+             "actions": list(steps)})
+
+    def next_frames(count):
+        frames = page.run("return window.clothlab.frames")
+        page.wait_for(f"return window.clothlab.frames >= {frames + count}", "the next frame", 60)
+
     if shift:
-        keys = [{"type": "keyDown", "value": "\ue008"}] + \
-            [{"type": "pause", "duration": 0}] * (len(steps) - 1) + \
-            [{"type": "keyUp", "value": "\ue008"}]
-        actions.append({"type": "key", "id": "keyboard", "actions": keys})
-    page._call("POST", page._session + "/actions", {"actions": actions})
+        act({"type": "key", "id": "keyboard", "actions": [{"type": "keyDown", "value": "\ue008"}]})
+    pointer({"type": "pointerMove", "duration": 0, "x": start[0], "y": start[1]})
+    next_frames(1)
+    pointer({"type": "pointerDown", "button": 0})
+    next_frames(2)
+    for i in range(1, 9):
+        pointer({"type": "pointerMove", "duration": 0,
+                 "x": start[0] + (end[0] - start[0]) * i // 8,
+                 "y": start[1] + (end[1] - start[1]) * i // 8})
+        next_frames(1)
+    pointer({"type": "pointerUp", "button": 0})
+    next_frames(2)
+    if shift:
+        act({"type": "key", "id": "keyboard", "actions": [{"type": "keyUp", "value": "\ue008"}]})
 
 
 def check_mouse(page, seen):
