@@ -125,6 +125,8 @@ EMSCRIPTEN_KEEPALIVE double clothlab_cpu_steps_per_second(int n, double seconds)
   clothlab::cloth_parameters p;
   p.grid_size = std::clamp(n, 2, 512);
   clothlab::spring_mesh cloth(p);
+  // At most a minute: the page does nothing else meanwhile.
+  seconds = std::isfinite(seconds) ? std::clamp(seconds, 0.0, 60.0) : 0.0;
   const double start = emscripten_get_now();  // ms
   long steps = 0;
   double elapsed = 0.0;
