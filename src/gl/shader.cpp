@@ -1,5 +1,7 @@
 #include "gl/shader.hpp"
 
+#include "gl/executable_path.hpp"
+
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -32,9 +34,7 @@ constexpr std::string_view vertex_and_fragment_header = desktop_header;
 #endif
 
 std::filesystem::path executable_directory() {
-  std::error_code ec;
-  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path() : exe.parent_path();
+  return executable_path().parent_path();
 }
 
 bool read_text(const std::filesystem::path& path, std::string& text) {

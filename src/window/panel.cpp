@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/stability.hpp"  // the core's: step-size limits and divergence (question 4)
@@ -19,6 +20,17 @@
 
 namespace clothlab {
 namespace {
+
+// A GL texture name as Dear ImGui's ImTextureID: a pointer up to Dear ImGui 1.91.3 (Debian 12's
+// 1.86), an integer (ImU64) since 1.91.4 (Debian unstable's 1.92), which a reinterpret_cast
+// cannot make. (A template, so that only the branch of the ImGui at hand is compiled.)
+template <typename id = ImTextureID>
+id imgui_texture(unsigned int gl_name) {
+  if constexpr (std::is_pointer_v<id>)
+    return reinterpret_cast<id>(static_cast<std::uintptr_t>(gl_name));
+  else
+    return static_cast<id>(gl_name);
+}
 
 const ImVec4 warning_red = {1.0f, 0.35f, 0.3f, 1.0f};
 const ImVec4 caution_yellow = {1.0f, 0.85f, 0.3f, 1.0f};
@@ -637,8 +649,7 @@ void show_state_textures(scene& the_scene) {
     ImGui::TextUnformatted(name);
     const ImVec2 top_left = ImGui::GetCursorScreenPos();
     // Texel row kv = 0 at the top, as in the texture's memory.
-    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(images.texture(image))),
-                 {side, side});
+    ImGui::Image(imgui_texture(images.texture(image)), {side, side});
     if (ImGui::IsItemHovered() && images.grid_size() > 0) {
       const ImVec2 mouse = ImGui::GetIO().MousePos;
       const int n = images.grid_size();
