@@ -10,13 +10,16 @@
 #include <string>
 #include <vector>
 
-#include "core/spring_mesh.hpp"
-#include "gl/gpu_cloth.hpp"
 #include "gl_fixture.hpp"
 #include "lab_check.hpp"
+#include "student.hpp"
 
 namespace clothlab {
 namespace {
+
+// The student's classes and functions, run by the lab runner (student.hpp).
+using student::gpu_cloth;
+using student::spring_mesh;
 
 cloth_parameters windy_cloth(double strength, const glm::dvec3& direction) {
   cloth_parameters p;
@@ -160,7 +163,8 @@ TEST_F(Q13GpuWind, TheGpuStepAddsTheWindAlongTheNormal) {
   spring_mesh cloth(p);
   gpu_cloth gpu;
   std::string error;
-  ASSERT_TRUE(gpu.load(cloth, error)) << error;
+  const bool loaded = gpu.load(cloth, error);
+  LAB_ASSERT_TRUE(loaded, error);
   gpu.step(p);
   gpu.read_state(cloth);
   for (std::size_t k = 0; k < cloth.particles().size(); ++k)
