@@ -65,3 +65,32 @@ void quiet_rest_of_test();
     return;                                              \
   } else                                                 \
     ASSERT_TRUE(lab_ok_) << (what)
+
+namespace clothlab::lab {
+
+// How many k in [0, count) fail `passes`, and the first of them.
+struct failures {
+  std::size_t wrong = 0, first = 0;
+};
+template <class Passes>
+failures count_failures(std::size_t count, Passes passes) {
+  failures f;
+  for (std::size_t k = 0; k < count; ++k)
+    if (!passes(k) && f.wrong++ == 0)
+      f.first = k;
+  return f;
+}
+
+}  // namespace clothlab::lab
+
+// LAB_EXPECT_VEC for every k in [0, count) (got, expected and what use k): one message, for the
+// first k that fails, with how many do.
+#define LAB_EXPECT_EVERY_VEC(k, count, got, expected, tolerance, what)                           \
+  if (const ::clothlab::lab::failures lab_failures_ = ::clothlab::lab::count_failures(           \
+          (count),                                                                               \
+          [&](std::size_t k) { return ::clothlab::lab::near((got), (expected), (tolerance)); }); \
+      lab_failures_.wrong == 0) {                                                                \
+  } else if (const std::size_t k = lab_failures_.first; false) {                                 \
+  } else                                                                                         \
+    LAB_EXPECT_VEC(got, expected, tolerance, what)                                               \
+        << "\n    (" << lab_failures_.wrong << " of " << (count) << " are wrong)"

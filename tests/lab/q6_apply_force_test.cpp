@@ -52,15 +52,25 @@ TEST(Q6ApplyForce, VelocityIsDampedThenAcceleratedByForceOverMassPlusGravity) {
 }
 
 // Then vertices[k] += dt speed[k] with the NEW speed: p' = (0.5, 0.5, 0) + 0.1 (1.15, 1.8, 2.15).
+// When the position did move with the speed just computed but that speed is wrong (the test
+// above says how), the message says so rather than blame the order.
 TEST(Q6ApplyForce, PositionMovesWithTheNewVelocity) {
   spring_mesh cloth = small_cloth();
   const glm::dvec3 p = cloth.particles().get_position(3);
   cloth.particles().set_velocity(3, {1, 2, 3});
   set_force(cloth, 3, {4, -2, 6});
   cloth.apply_force();
-  LAB_EXPECT_VEC(cloth.particles().get_position(3), p + 0.1 * glm::dvec3(1.15, 1.8, 2.15), 1e-12,
-                 "Q6: vertices[k] += dt speed[k], with the speed just computed (the handout's "
-                 "second loop)");
+  const glm::dvec3 speed = cloth.particles().get_velocity(3);
+  const glm::dvec3 expected_speed(1.15, 1.8, 2.15);
+  const bool order_right = lab::near(cloth.particles().get_position(3), p + 0.1 * speed, 1e-12);
+  LAB_EXPECT_VEC(cloth.particles().get_position(3), p + 0.1 * expected_speed, 1e-12,
+                 order_right && !lab::near(speed, expected_speed, 1e-12)
+                     ? "Q6: the vertex moved by dt speed[k] with the speed just computed, as it "
+                       "should, but that speed is wrong (" +
+                           lab::text(speed) + " instead of " + lab::text(expected_speed) +
+                           "): see speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)"
+                     : std::string("Q6: vertices[k] += dt speed[k], with the speed just computed "
+                                   "(the handout's second loop)"));
 }
 
 // Every vertex, not only the first: each gets its own force, F_k = (k, -k, 2k), from rest:

@@ -495,8 +495,10 @@ std::optional<std::string> runner::ask(std::string_view operation, const std::st
     return std::nullopt;
   };
 
+  std::size_t scanned = 0;  // bytes of `answer` known to hold no end of line
   for (;;) {
-    const std::size_t end = answer.find('\n');
+    const std::size_t end = answer.find('\n', scanned);
+    scanned = answer.size();
     if (end != std::string::npos) {
       const std::string line = answer.substr(0, end);
       answer.erase(0, end + 1);
