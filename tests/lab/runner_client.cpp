@@ -31,10 +31,30 @@ extern const char* const default_runner_path;  // runner_path.cpp: this build's 
 
 namespace {
 
-constexpr std::size_t shown_output_per_test = 64 * 1024;  // of the student's prints
-constexpr std::size_t flood_limit = 16 * 1024 * 1024;     // output of one test, bytes
-constexpr std::size_t answer_limit = 64 * 1024 * 1024;    // one answer line, bytes
-constexpr double default_timeout = 10.0;                  // s, per request
+constexpr std::size_t shown_output_per_test = 64 * 1024;       // of the student's prints
+constexpr std::size_t default_flood_limit = 16 * 1024 * 1024;  // output of one test, bytes
+constexpr std::size_t answer_limit = 64 * 1024 * 1024;         // one answer line, bytes
+constexpr double default_timeout = 10.0;                       // s, per request
+
+// What the student's code may print in one test (CLOTHLAB_LAB_OUTPUT_LIMIT, bytes).
+std::size_t flood_limit() {
+  const char* text = std::getenv("CLOTHLAB_LAB_OUTPUT_LIMIT");
+  if (text == nullptr || *text == '\0')
+    return default_flood_limit;
+  char* end = nullptr;
+  const unsigned long long bytes = std::strtoull(text, &end, 10);
+  return (end != text && *end == '\0' && bytes > 0) ? static_cast<std::size_t>(bytes)
+                                                    : default_flood_limit;
+}
+
+// "16 MB", "1000 bytes"
+std::string size_in_words(std::size_t bytes) {
+  if (bytes % (1024 * 1024) == 0)
+    return std::to_string(bytes >> 20) + " MB";
+  if (bytes % 1024 == 0)
+    return std::to_string(bytes >> 10) + " KB";
+  return std::to_string(bytes) + " bytes";
+}
 
 double request_timeout() {
   const char* text = std::getenv("CLOTHLAB_LAB_TIMEOUT");
@@ -379,7 +399,7 @@ bool runner::drain_output(std::size_t& total) {
     }
     output_this_test_ += n;
     total += n;
-    if (output_this_test_ > flood_limit)
+    if (output_this_test_ > flood_limit())
       return false;
   }
 }
@@ -550,8 +570,8 @@ std::optional<std::string> runner::ask(std::string_view operation, const std::st
     }
     if (output_slot >= 0 && fds[output_slot].revents != 0 && !drain_output(printed)) {
       kill_and_reap();
-      fail(operation, "printed more than " + std::to_string(flood_limit >> 20) +
-                          " MB in one test: a print in a loop that runs every step? Stopped");
+      fail(operation, "printed more than " + size_in_words(flood_limit()) +
+                          " in one test: a print in a loop that runs every step? Stopped");
       return std::nullopt;
     }
     if ((fds[0].revents & POLLOUT) != 0) {

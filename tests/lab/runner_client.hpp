@@ -8,7 +8,9 @@
 //   CLOTHLAB_LAB_RUNNER   the runner program (default: this build's lab_runner);
 //   CLOTHLAB_LAB_SANDBOX  a JSON array of words put before it (default: none), e.g.
 //                         ["bwrap", "--ro-bind", "/", "/", "--"]: the grader runs it confined;
-//   CLOTHLAB_LAB_TIMEOUT  seconds a request may take (default 10).
+//   CLOTHLAB_LAB_TIMEOUT  seconds a request may take (default 10);
+//   CLOTHLAB_LAB_OUTPUT_LIMIT  bytes the student's code may print in one test (default 16 MB;
+//                         the first 64 KB are shown, the rest is read and dropped).
 // The runner reads the shaders from CLOTHLAB_DATA_DIR, as every program of the project does.
 #pragma once
 
