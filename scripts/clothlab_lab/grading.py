@@ -6,13 +6,15 @@ The kit's folder (--work, or --kit):
     manifest.json   the lab (grading/lab.json) and the copy's version, as when the kit was made
     stubs/          the student's files as handed out
     base/copy/      the student copy and its build (build-grade/), made by the grader itself
-    scratch/        a submission's only writable place (a sized tmpfs where root may mount one):
-                    base/copy copied there before each submission, emptied after it
-The build is configured for scratch/copy, so that each submission's build there is incremental:
-only the student's files are compiled, and the question tests relinked.
+A submission's only writable place is its scratch folder, /var/tmp/clothlab-grade/<hash of the
+kit's path> (a sized tmpfs where root may mount one): base/copy is copied there before each
+submission, and it is emptied after. The build is configured for that folder's copy/, so that
+each submission's build there is incremental: only the student's files are compiled, and the
+question tests relinked.
 """
 import concurrent.futures
 import fcntl
+import hashlib
 import json
 import os
 import re
@@ -62,9 +64,17 @@ def sync(source, dest):
         (dest / name).unlink()
 
 
+def scratch_of(work):
+    """A submission's scratch folder: fixed for a kit (its build is configured there), and
+    apart from the kit and from everything else of the grader's, so that, where no namespace
+    hides the rest, the folders above it lead nowhere (/var/tmp/clothlab-grade/<kit's hash>)."""
+    top = Path("/var/tmp") if Path("/var/tmp").is_dir() else Path(tempfile.gettempdir())
+    return top / "clothlab-grade" / hashlib.sha256(str(work).encode()).hexdigest()[:12]
+
+
 def kit_copy(work):
     """The folder where the copy is built and each submission is graded."""
-    return work / "scratch" / "copy"
+    return scratch_of(work) / "copy"
 
 
 def build_dir(work):
@@ -127,7 +137,6 @@ def build_base(work, lab, jobs):
     base.mkdir(mode=0o700)
     subprocess.run(["cp", "-a", str(kit_copy(work)), str(base / "copy")], check=True)
     subprocess.run(["chown", "-R", f"{os.geteuid()}:{os.getegid()}", str(base)], check=True)
-    os.chmod(work, os.stat(work).st_mode | 0o001)  # the sandbox's user reaches scratch/ only
 
 
 def build_outside(work, lab, jobs):
@@ -157,8 +166,8 @@ def build_command(work, lab, jobs):
 
 def build_submission(work, lab, box, jobs):
     """Builds the student's files into the kit's copy, in the sandbox; (ok, output)."""
-    log = work / "scratch" / "build.log"
-    home = work / "scratch" / "home"
+    log = scratch_of(work) / "build.log"
+    home = scratch_of(work) / "home"
     home.mkdir(exist_ok=True)
     if box.root:
         os.chown(home, box.uid, box.uid)
@@ -259,7 +268,7 @@ def run_tests(work, tests, box, jobs, budget):
     its scratch. Each test program runs its tests at once; when it does not report (a loop, a
     crash, a flood), each of its tests runs alone, so that the report says which."""
     limits = box.limits
-    run_dir = work / "scratch" / "run"
+    run_dir = scratch_of(work) / "run"
     shutil.rmtree(run_dir, ignore_errors=True)
     for sub in ("cwd", "home", "results"):
         (run_dir / sub).mkdir(parents=True)
@@ -410,7 +419,7 @@ def short_name(test):
 def read_submission(work, lab, version, reference, submission, box):
     """({student file: bytes}, [notes]) of a submission: copied into the scratch folder as it
     is (bounded), unpacked there by unpack.py in the sandbox, its student copy found."""
-    scratch = work / "scratch"
+    scratch = scratch_of(work)
     unpacked = scratch / "unpacked"
     limits = box.limits
     source, notes = submissions.stage(submission, scratch / "submission", limits)
@@ -542,6 +551,9 @@ def grade_class(args):
     """Grades args.submissions into args.out (or only prepares the kit); the exit status.
     args: the command line of scripts/grade."""
     box = None
+    # A grader stopped by SIGTERM (a time-out of ctest, kill) still ends its submissions'
+    # processes, unmounts its scratch and removes its cgroup (the finally below).
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     try:
         work = (args.kit or args.work).resolve()
         work.mkdir(parents=True, exist_ok=True)
@@ -557,7 +569,7 @@ def grade_class(args):
                                     **({"scratch": args.scratch_size * confinement.MiB}
                                        if args.scratch_size else {}))
         try:
-            box = confinement.Sandbox(work / "scratch", limits, enabled=not args.no_sandbox)
+            box = confinement.Sandbox(scratch_of(work), limits, enabled=not args.no_sandbox)
         except confinement.SandboxError as error:
             raise GradeError(str(error))
         if args.kit:
@@ -613,7 +625,7 @@ def grade_class(args):
                 record = finish(record, began, lab.points)
             durations.append(time.monotonic() - began)
             records.append(record)
-            write_results(args, record, lab, version)
+            write_results(args, record, lab, version, box.description)
             if not sys.stderr.isatty():
                 say(f"grade: {name}: {record['score']:g}/{record['max_score']:g} "
                     f"({durations[-1]:.0f} s)")
@@ -632,10 +644,10 @@ def grade_class(args):
             box.release()
 
 
-def write_results(args, record, lab, version):
+def write_results(args, record, lab, version, confinement):
     folder = args.out / record["name"]
     folder.mkdir(parents=True, exist_ok=True)
-    results = reports.gradescope_results(record, lab, version)
+    results = reports.gradescope_results(record, lab, version, confinement)
     text = json.dumps(results, indent=1) + "\n"
     (folder / "results.json").write_text(text)
     (folder / "junit.xml").write_text(reports.junit_xml(record, lab), errors="replace")

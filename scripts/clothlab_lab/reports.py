@@ -103,7 +103,7 @@ def headline(message):
                 else "")
 
 
-def gradescope_results(record, lab, version):
+def gradescope_results(record, lab, version, confinement=""):
     points = lab.points
     output = "\n".join(record["notes"]) or "graded by the teacher's tests of every question"
     if record["build_error"]:
@@ -115,6 +115,7 @@ def gradescope_results(record, lab, version):
         "visibility": "visible",
         "stdout_visibility": "hidden",
         "extra_data": {"max_score": record["max_score"], "version": version,
+                       "confinement": confinement,
                        "build_seconds": record.get("build_seconds"),
                        "test_seconds": record.get("test_seconds")},
         "tests": [{"name": f"{q}: {question_title(lab, q)}", "number": q[1:],

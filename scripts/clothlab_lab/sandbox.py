@@ -9,6 +9,7 @@ small /tmp: no teacher tree, no other submission, no grades, no host socket. Whe
 limits and the private scratch still hold, and the grader's own folders are closed to that
 user (say() reports which confinement held).
 """
+import fcntl
 import json
 import os
 import resource
@@ -30,8 +31,9 @@ class Limits:
     build_seconds: float = 600  # wall time of one build (compiler and linker included)
     test_seconds: float = 10  # wall time of one test; twice that for a program's whole run
     test_budget: float = 120  # wall time of all of one submission's tests
-    memory: int = 4096 * MiB  # address space of each process (RLIMIT_AS)
-    processes: int = 256  # processes and threads of the submission's user (RLIMIT_NPROC)
+    memory: int = 2048 * MiB  # address space of each process (RLIMIT_AS)
+    memory_total: int = 3072 * MiB  # memory of all its processes together (a cgroup, where any)
+    processes: int = 256  # processes and threads: of its user (RLIMIT_NPROC), of its cgroup
     file_size: int = 256 * MiB  # one file written by the build (RLIMIT_FSIZE)
     test_output: int = 1 * MiB  # a test's output, and each file it writes
     open_files: int = 512  # (RLIMIT_NOFILE)
@@ -53,11 +55,85 @@ class SandboxError(Exception):
     pass
 
 
+class Cgroup:
+    """A control group for the submission's processes, where root may make one (cgroup v1's
+    memory and pids hierarchies, or v2's unified one): a bound on their memory and number
+    together, and the list of them, so that every one ends. Empty where none can be made."""
+
+    def __init__(self, name, memory, processes):
+        self.folders = []
+        top = Path("/sys/fs/cgroup")
+        settings = {"memory.limit_in_bytes": memory, "memory.max": memory,
+                    "pids.max": processes}
+        if (top / "cgroup.controllers").exists():
+            try:
+                (top / "cgroup.subtree_control").write_text("+memory +pids")
+            except OSError:
+                pass
+            candidates = [top / name]
+        else:
+            candidates = [top / "memory" / name, top / "pids" / name]
+        for folder in candidates:
+            try:
+                folder.mkdir(exist_ok=True)
+                for file, value in settings.items():
+                    if (folder / file).exists():
+                        (folder / file).write_text(str(value))
+                self.folders.append(folder)
+            except OSError:
+                continue
+        self.bounds = sorted({f for folder in self.folders for f in ("memory", "pids")
+                              if any(p.name.startswith(f) for p in folder.iterdir())})
+
+    def enter(self):
+        """Puts the calling process (a child about to become the submission) in the group."""
+        for folder in self.folders:
+            try:
+                (folder / "cgroup.procs").write_text(str(os.getpid()))
+            except OSError:
+                pass
+
+    def end_all(self):
+        for _ in range(20):
+            alive = [int(p) for folder in self.folders for p in
+                     (folder / "cgroup.procs").read_text().split()]
+            if not alive:
+                return
+            for pid in alive:
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+            time.sleep(0.05)
+
+    def remove(self):
+        self.end_all()
+        for folder in self.folders:
+            try:
+                folder.rmdir()
+            except OSError:
+                pass
+
+
 def sandbox_uid():
-    uid = int(os.environ.get("CLOTHLAB_GRADE_UID", SANDBOX_UID))
-    if uid == 0:
-        raise SandboxError("CLOTHLAB_GRADE_UID=0: the submission's code never runs as root")
-    return uid
+    """(uid, lock): a user of its own for this grader's submissions: the first of SANDBOX_UID,
+    SANDBOX_UID + 1, ... that no other grader on this machine holds (two graders never end or
+    count each other's processes), or CLOTHLAB_GRADE_UID."""
+    if "CLOTHLAB_GRADE_UID" in os.environ:
+        uid = int(os.environ["CLOTHLAB_GRADE_UID"])
+        if uid == 0:
+            raise SandboxError("CLOTHLAB_GRADE_UID=0: the submission's code never runs as root")
+        return uid, None
+    locks = Path(tempfile.gettempdir()) / "clothlab-grade-users"
+    locks.mkdir(mode=0o700, exist_ok=True)
+    for uid in range(SANDBOX_UID, SANDBOX_UID + 100):
+        lock = open(locks / str(uid), "w")
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return uid, lock
+        except OSError:
+            lock.close()
+    raise SandboxError(f"100 graders hold the users {SANDBOX_UID} and after: none is free")
 
 
 class Sandbox:
@@ -68,8 +144,9 @@ class Sandbox:
         self.scratch = Path(scratch)
         self.limits = limits
         self.root = os.geteuid() == 0
-        self.uid = sandbox_uid() if self.root else os.geteuid()
+        self.uid, self.uid_lock = sandbox_uid() if self.root else (os.geteuid(), None)
         self.sized = False  # the scratch is a tmpfs of limits.scratch bytes
+        self.cgroup = None
         self.kind, self.description = "none", "none (--no-sandbox): the tests run as the grader"
         if not enabled:
             return
@@ -88,7 +165,13 @@ class Sandbox:
                                f"cannot run the submissions as another user: {bwrap_says}. Run "
                                "it as root (in a container), install bubblewrap, or give "
                                "--no-sandbox on a machine that holds nothing else")
+        if self.root:
+            self.cgroup = Cgroup(f"clothlab-grade-{os.getpid()}", limits.memory_total,
+                                 limits.processes)
         who = f"uid {self.uid}, no capability" if self.root else "the grader's own user"
+        if self.cgroup and self.cgroup.bounds:
+            who += (f"; a cgroup of {limits.memory_total // MiB} MB and {limits.processes} "
+                    "processes for the whole submission")
         total = (f"at most {self.limits.scratch // MiB} MB written in all" if self.sized else
                  "no bound on the total written (no tmpfs could be mounted; each file is "
                  "bounded)")
@@ -99,13 +182,11 @@ class Sandbox:
     def prepare_scratch(self):
         """Makes the scratch folder, as a tmpfs of limits.scratch bytes where root may mount
         one, reachable by the submission's user and by nobody else."""
-        self.scratch.mkdir(parents=True, exist_ok=True)
+        self.scratch.parent.mkdir(mode=0o711, parents=True, exist_ok=True)
+        self.scratch.mkdir(mode=0o700, exist_ok=True)
         if self.root:
-            for parent in [self.scratch.parent, *self.scratch.parent.parents]:
-                # The submission's user must reach its scratch folder: traverse, never list.
-                mode = parent.stat().st_mode
-                if not mode & 0o001:
-                    os.chmod(parent, mode | 0o001)
+            # The submission's user reaches its scratch folder: traverse, never list.
+            os.chmod(self.scratch.parent, 0o711)
             if not os.path.ismount(self.scratch):
                 mounted = subprocess.run(["mount", "-t", "tmpfs", "-o",
                                           f"size={self.limits.scratch},mode=0700,nosuid,nodev",
@@ -117,6 +198,8 @@ class Sandbox:
 
     def release(self):
         self.reset(None)
+        if self.cgroup:
+            self.cgroup.remove()
         if self.sized and os.path.ismount(self.scratch):
             subprocess.run(["umount", "--lazy", str(self.scratch)], capture_output=True)
 
@@ -140,6 +223,8 @@ class Sandbox:
     def end_all(self):
         """Every process of the submission's user ends (a compiler that outlived its build, a
         fork left behind): kill(-1) as that user signals exactly its processes."""
+        if self.cgroup:
+            self.cgroup.end_all()
         if self.root and self.kind != "none":
             subprocess.run(["setpriv", f"--reuid={self.uid}", f"--regid={self.uid}",
                             "--clear-groups", "--", "kill", "-KILL", "-1"], capture_output=True)
@@ -161,6 +246,8 @@ class Sandbox:
 
     def try_bubblewrap(self):
         """None when bubblewrap runs here as the submission's user, else why not."""
+        if os.environ.get("CLOTHLAB_GRADE_CONFINEMENT") == "user":
+            return "CLOTHLAB_GRADE_CONFINEMENT=user (as in a container that refuses namespaces)"
         if not shutil.which("bwrap"):
             return "bubblewrap is not installed (apt-get install bubblewrap)"
         self.kind = "bubblewrap"
@@ -182,6 +269,8 @@ class Sandbox:
 
         def apply():
             os.setsid()  # its own session: the grader ends the group at a time-out
+            if self.cgroup:
+                self.cgroup.enter()
             for kind, value in ((resource.RLIMIT_AS, limits.memory),
                                 (resource.RLIMIT_FSIZE, file_size),
                                 (resource.RLIMIT_CPU, int(cpu_seconds)),
