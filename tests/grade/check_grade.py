@@ -233,7 +233,8 @@ def main():
         maker = Maker(root, work)
         (work / "class").mkdir()
         subs = make_class(maker, work / "class", outside)
-        points = json.loads((root / "grading/points.json").read_text())["questions"]
+        lab = json.loads((root / "grading/lab.json").read_text())
+        points = {q["id"]: q["points"] for q in lab["questions"]}
         questions = list(points)
         out = work / "out"
         graded = run([root / "scripts/grade", *subs, "--out", out, "--work", work / "kit",
@@ -392,7 +393,7 @@ def main():
                                   rf"timeout: \d+\n\s*max-score: (\d+)", text)
                 check(match and float(match.group(1)) == full[q],
                       f"grade.yml: no step that runs ctest -L '^{q.lower()}$' with max-score "
-                      f"{full[q]:g} (grading/points.json)")
+                      f"{full[q]:g} (grading/lab.json)")
             for path in re.findall(r"(scripts/[\w.-]+|\./[\w.-]+\.sh)", commands):
                 check((maker.stubs / path).exists(), f"grade.yml runs {path}, which the student "
                                                      "copy lacks")
