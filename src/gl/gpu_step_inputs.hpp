@@ -14,29 +14,12 @@
 #include <span>
 #include <vector>
 
+#include "core/grid_neighbours.hpp"  // neighbour_offsets: the spring mask's bits
 #include "core/spring_mesh.hpp"
 #include "gl/gl.hpp"
 #include "gl/shader.hpp"
 
 namespace clothlab {
-
-// The 12 neighbours a particle can be joined to (handout figure 6), in the order of the spring
-// mask's bits and of the shaders' neighbours[] tables: (du, dv, family), family 0 structural,
-// 1 shear, 2 bending.
-inline constexpr int neighbour_count = 12;
-inline constexpr std::array<std::array<int, 3>, neighbour_count> neighbour_offsets = {
-    {{1, 0, 0},
-     {-1, 0, 0},
-     {0, 1, 0},
-     {0, -1, 0},  // structural, h
-     {1, 1, 1},
-     {-1, -1, 1},
-     {1, -1, 1},
-     {-1, 1, 1},  // shear, h√2
-     {2, 0, 2},
-     {-2, 0, 2},
-     {0, 2, 2},
-     {0, -2, 2}}};  // bending, 2h
 
 // The spring mask of the cloth (see above), one word per particle k = ku + N kv, into `masks`.
 void spring_masks(const spring_mesh& cloth, std::vector<std::uint32_t>& masks);
