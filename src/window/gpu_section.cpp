@@ -100,7 +100,7 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
   else
     fixed_lines(
         "fragment: the handout's path (textures); compute: OpenGL 4.3 compute shaders "
-        "over buffers (issue 9)",
+        "over buffers",
         2, text_style::disabled);
 
   ImGui::Text("live: %s, %.0f steps/s (stepping alone)", backend_name(the_scene.backend()),

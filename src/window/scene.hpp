@@ -168,7 +168,7 @@ class scene {
   // again when the cloth stepped since the last call (needs the GL context).
   const state_images& state_textures();
   bool state_textures_from_gpu() const { return state_images_from_gpu_; }
-  // The mouse on the cloth and on the masses of stages 1 and 2 (issue 10; model.md, "drag").
+  // The mouse on the cloth and on the masses of stages 1 and 2 (model.md, "drag").
   // At a left press, grab_particle picks what is under the ray (picking.hpp): on the cloth the
   // particle, from its current positions (on the GPU path read back once, at the press); on
   // stages 1 and 2 the mass whose drawn sphere the ray crosses. A pinned particle or the fixed
@@ -273,7 +273,7 @@ class scene {
   frame_anatomy last_anatomy_;            // the last whole frame's
   std::array<double, 3> load_seconds_{};  // the last load_model of each stage, s
 
-  // The GPU paths (questions 11 and 12, issue 9): while one holds the cloth's state (paths_),
+  // The GPU paths (questions 11 and 12): while one holds the cloth's state (paths_),
   // cloth_stage holds a copy read back only when the panel needs it (panel_needs_state), at a
   // switch, a measurement, a press of the mouse or a divergence. The divergence check runs on
   // the GPU (cloth_paths::run).

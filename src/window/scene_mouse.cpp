@@ -12,7 +12,7 @@
 
 namespace clothlab {
 
-// ---- The mouse on the cloth (issue 10) -----------------------------------------------------
+// ---- The mouse on the cloth and the masses (model.md, "drag") ------------------------------
 
 pick_ray scene::ray_at(double x, double y) const {
   const double ndc_x = 2.0 * (x - viewport_left_) / viewport_width_ - 1.0;

@@ -65,7 +65,7 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool clo
     fixed_lines("GPU path: semi-implicit and explicit Euler only", 1, text_style::disabled);
 }
 
-// Issue 10: the mouse drag's spring on a mass of stages 1 and 2.
+// The mouse drag's spring on a mass of stages 1 and 2 (model.md, "drag").
 void edit_mass_drag(mass_drag_parameters& drag) {
   fixed_lines("left drag on a mass: pull it (p0 is fixed)", 1, text_style::disabled);
   slider("drag stiffness K_d (N/m)", drag.stiffness, 1.0, max_drag_stiffness, "%.0f", true);
@@ -100,7 +100,7 @@ void show_spring_legend() {
   }
 }
 
-// Issue 10's presets (model.md, "Interaction and contacts"). Each resets the cloth.
+// The cloth's presets (model.md, "Interaction and contacts"). Each resets the cloth.
 // Drape: no pins, the sphere under the cloth's centre; the cloth falls onto it. The friction is
 // high (mu_s dt = 0.08 at dt = 2 ms): the model's friction only damps the sliding (there is no
 // sticking), and with the default 5/s the draped cloth slides off within seconds, sooner on the
@@ -122,7 +122,8 @@ void rip_preset(cloth_parameters& p) {
   p.sphere.enabled = false;
 }
 
-// Issue 10: the mouse drag's spring, the sphere, tearing and self-collision.
+// The mouse drag's spring, the sphere, tearing and self-collision (model.md, "Interaction and
+// contacts").
 void edit_interaction(scene& the_scene, user_actions& actions) {
   cloth_parameters& p = the_scene.cloth_stage.parameters;
   fixed_lines("left drag on the cloth: pull a particle; Shift + left drag: move the sphere", 2,
@@ -145,7 +146,7 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   slider("friction mu_s (1/s)", p.sphere.friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
 
   slider("tear strain eps (0: off)", p.tear_strain, 0.0, 3.0, "%.3f");
-  // On its own line: beside the full-width slider it was cut off by the panel's edge.
+  // On its own line: beside the full-width slider the panel's edge would cut it off.
   if (ImGui::Button("Rip (resets)")) {
     rip_preset(p);
     actions.reset = true;
