@@ -274,7 +274,7 @@ std::unique_ptr<window_app> window_app::create(glfw_context& context, const opti
 }
 
 window_app::window_app(glfw_context& context, const options& start)
-    : context_(context), scene_(start) {}
+    : context_(context), scene_(start.stage, start.spring, start.coupled, start.cloth) {}
 
 window_app::~window_app() = default;
 
