@@ -178,11 +178,22 @@ int run_batched(const options& o, cloth_paths& paths, run_outputs& out) {
   return 0;
 }
 
+// --start 1d, question 2: of v1, only its component along the spring (p1 - p0) is kept, so that
+// the mass moves on the spring's line, the 1D model's motion (the window's "1D start" box).
+void keep_velocity_along_spring(single_spring& stage) {
+  particle_system& particles = stage.particles();
+  const glm::dvec3 axis = particles.get_position(1) - particles.get_position(0);
+  const glm::dvec3 v = particles.get_velocity(1);
+  particles.set_velocity(1, glm::dot(v, axis) / glm::dot(axis, axis) * axis);
+}
+
 // Runs the chosen stage (and writes its PNG and OBJ); the exit status.
 int run_stage(const options& o, run_outputs& out) {
   switch (o.stage) {
     case stage_kind::spring: {
       single_spring stage(o.spring);
+      if (o.spring_1d_start)
+        keep_velocity_along_spring(stage);
       const int status = run_cpu(o, stage, out, o.spring.dynamics.time_step);
       return status == 0 && !o.png_path.empty() ? write_cpu_png(o, out, stage) : status;
     }

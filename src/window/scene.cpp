@@ -37,6 +37,7 @@ scene::scene(const options& start)
       spring_stage(start.spring),
       chain_stage(start.coupled),
       cloth_stage(paths_.cloth),
+      spring_one_dimensional_start(start.spring_1d_start),
       view(camera::default_for(start.stage)),
       stage_(start.stage) {}
 

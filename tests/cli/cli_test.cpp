@@ -1085,6 +1085,7 @@ TEST_F(cli, ProgressIsShownOnATerminalOnly) {
   EXPECT_TRUE(plain.err.empty()) << plain.err;
 }
 
+// BEGIN TEACHER (the student copy has no compute path)
 namespace {
 
 // The compute-shader path runs and writes its outputs (not in the student copy, whose step
@@ -1099,6 +1100,7 @@ TEST_F(SolutionCli, GpuComputeRunsAndWritesItsOutputs) {
 }
 
 }  // namespace
+// END TEACHER
 
 // Issue 22: the edges of every input.
 namespace {
