@@ -5,6 +5,7 @@
 // docs/architecture.md). The same way, --gl chooses between this program (OSMesa) and clothlab-egl
 // (EGL), built from the same sources: --gl auto takes EGL only where a hardware GPU is there.
 #include <csignal>
+#include <exception>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -77,5 +78,14 @@ int main(int argc, char** argv) {
       return hand_over("clothlab-egl", argc, argv);
 #endif
   }
-  return clothlab::run_headless(o);
+  // Anything thrown past the run (the steps' own errors are reported by the run, naming the
+  // function): exit 1 and one line, never std::terminate's abort.
+  try {
+    return clothlab::run_headless(o);
+  } catch (const std::exception& error) {
+    clothlab::report("%s", clothlab::one_line(error.what()).c_str());
+  } catch (...) {
+    clothlab::report("stopped by an exception that is not a std::exception");
+  }
+  return clothlab::exit_failure;
 }

@@ -1455,6 +1455,37 @@ TEST_F(cli, FullDeviceMessagesSayWhy) {
   }
 }
 
+// A GLSL error is reported at its file and line, in the shader the loader compiles and in the
+// file it includes (gpu_cloth_common.glsl, whose lines the compiler numbers in their own
+// source string): "shaders/gpu_cloth_common.glsl:89(12): error: ...", exit 1.
+TEST_F(cli, ShaderErrorsNameTheFileAndLineThatHoldThem) {
+  const fs::path source =
+      fs::path(clothlab_test::render_reference_directory).parent_path().parent_path().parent_path();
+  for (const char* broken : {"gpu_cloth_common.glsl", "gpu_step.frag"}) {
+    const fs::path data = root() / "data";
+    fs::remove_all(data);
+    fs::create_directories(data);
+    fs::copy(source / "shaders", data / "shaders");
+    fs::copy(source / "assets", data / "assets");
+    const std::string text = read_file(data / "shaders" / broken);
+    const long line = std::count(text.begin(), text.end(), '\n') + 1;
+    std::ofstream(data / "shaders" / broken, std::ios::app)
+        << "float broken_line() { return undeclared_name; }\n";
+    spawn_settings how{clothlab_command({"--headless", "--gl", "osmesa", "--backend", "gpu", "--N",
+                                         "4", "--steps", "1"}),
+                       work()};
+    how.environment = {"CLOTHLAB_DATA_DIR=" + data.string()};
+    const ended result = wait_for(spawn(how), work());
+    EXPECT_TRUE(result.exited && result.code == 1) << broken << ": " << result.err;
+    const std::string place = std::string("shaders/") + broken + ":" + std::to_string(line);
+    const std::string other_form = std::string("shaders/") + broken + "(" + std::to_string(line);
+    EXPECT_TRUE(result.err.find(place) != std::string::npos ||
+                result.err.find(other_form) != std::string::npos)
+        << "expected " << place << " in: " << result.err;
+    EXPECT_NE(result.err.find("undeclared_name"), std::string::npos) << result.err;
+  }
+}
+
 // A data file missing (CLOTHLAB_DATA_DIR pointing at a copy without it) fails before step 1,
 // naming the file, with the files of a previous run left as they were (a missing GPU shader
 // used to replace an existing CSV with a header-only one; a missing drawing shader or texture
