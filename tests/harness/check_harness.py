@@ -35,6 +35,8 @@ CASES = {
     # The sandbox's words come before the runner: here they set the mode.
     "sandbox_prefix": ({"CLOTHLAB_LAB_SANDBOX": '["env", "CLOTHLAB_FAKE_RUNNER=crash"]'},
                        WHERE + "crashed: segmentation fault", 20),
+    "sandbox_escapes": ({"CLOTHLAB_LAB_SANDBOX": ' [ "env" ,"CLOTHLAB_FAKE_RUNNER=cr\\u0061sh" ] '},
+                        WHERE + "crashed: segmentation fault", 20),
     "sandbox_not_json": ({"CLOTHLAB_LAB_SANDBOX": '["env", '},
                          WHERE + "could not be started: CLOTHLAB_LAB_SANDBOX is not a JSON array",
                          20),
