@@ -101,7 +101,7 @@ def main():
         if run.returncode < 0:
             fail(f"the checker crashed (signal {-run.returncode}):\n{tail}")
         if run.returncode == 0:
-            fail(f"the checker PASSED with a runner that {case.replace('_', ' ')}s:\n{tail}")
+            fail(f"the checker PASSED with a misbehaving runner ({case}):\n{tail}")
         if expected not in output:
             fail(f"the failure does not say '{expected}':\n{tail}")
         try:
