@@ -111,6 +111,17 @@ wait_for_log() {
   return 1
 }
 
+# Waits up to 30 s for a line of the program's output that was not there before: the log has
+# more lines matching PATTERN than COUNT, the number counted before the action that prints it
+# (wait_for_log would take a line printed earlier by the same state for the action's answer).
+wait_for_new_log() {  # PATTERN COUNT
+  for _ in $(seq 120); do
+    [ "$(grep -c "$1" window.log)" -gt "$2" ] && return 0
+    sleep 0.25
+  done
+  return 1
+}
+
 # The window has built its panel once (its first layout line): it is drawing and takes input.
 # (A fixed sleep here let a test's first drag start before the first frame under load.)
 wait_for_log "^clothlab-window: layout: " || fail "the window drew no frame within 30 s"
@@ -509,11 +520,14 @@ case "$scenario" in
     wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
     press n
     # The time mode: "fixed steps per frame" shows other widgets in the same height.
+    before=$(grep -c "layout: cloth stage, paused, fixed steps, GPU," window.log || true)
     click_widget "fixed steps per frame"
-    wait_for_log "layout: cloth stage, paused, fixed steps, GPU," ||
+    wait_for_new_log "layout: cloth stage, paused, fixed steps, GPU," "$before" ||
       fail "a click on \"fixed steps per frame\" did not change the time mode"
+    # (the state "paused, real time" was there before the click: a new line of it is the answer)
+    before=$(grep -c "layout: cloth stage, paused, real time, GPU, message yes" window.log || true)
     click_widget "real time"
-    wait_for_log "layout: cloth stage, paused, real time, GPU, message yes" ||
+    wait_for_new_log "layout: cloth stage, paused, real time, GPU, message yes" "$before" ||
       fail "no layout line after going back to real time"
     check_steady_panel cloth 5
     ;;
