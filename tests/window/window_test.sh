@@ -360,7 +360,11 @@ case "$scenario" in
     # student's copy does before questions 6 to 9): the window says so, over the scene.
     wait_for_log "the cloth stage fell out of view at t = " ||
       fail "the free-falling cloth never left the view (or the window did not say it)"
+    # The banner's window appears the frame after the line, sized there and drawn from the frame
+    # after: a first screenshot marks a frame past the line, the second one shows the banner.
+    first=$(screenshot_of cloth)
     shot=$(screenshot_of cloth)
+    [ "$shot" != "$first" ] || fail "the second screenshot is the first one ($first)"
     check_image "$shot" 1280 800 20
     # The banner: a dark box over the light sky right of the panel (the sky has no dark pixel).
     dark=$(convert "$shot" -crop 870x800+410+0 +repage -sample 25% -fx "r < 0.3 && g < 0.3 && b < 0.3" \
