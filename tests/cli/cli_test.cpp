@@ -1396,21 +1396,35 @@ TEST_F(cli, TimeoutsTwoSignalsLeaveWholeFiles) {
       {"--headless", "--stage", "spring", "--sweep", "s.csv", "--sweep-dt", "1e-4:1e-3:8",
        "--sweep-K", "1:100:8", "--sweep-time", "1000"},
       {"--headless", "--N", "20", "--steps", "1000000000", "--csv-every", "100", "--csv", "s.csv"}};
-  // Under timeout itself, then the same two signals sent by hand 20 ms apart (two signals sent
-  // back to back to a process that is not running merge into one).
+  // Under timeout itself (SIGTERM sent to timeout, which passes it on as on expiry), then the
+  // same two signals sent by hand 20 ms apart (two signals sent back to back to a process that
+  // is not running merge into one). Each once the run has begun: its CSV's temporary file is
+  // there (on a loaded machine a fixed 0.3 s could end before the program had started).
+  const auto run_has_begun = [this] {
+    for (int i = 0; i < 6000; ++i) {
+      for (const auto& entry : fs::directory_iterator(work()))
+        if (entry.path().filename().string().starts_with(".s.csv."))
+          return true;
+      usleep(10000);
+    }
+    return false;
+  };
   for (const arguments& run : runs) {
     for (const bool by_timeout : {true, false}) {
       fs::remove_all(work());
       fs::create_directory(work());
       ended result;
       if (by_timeout) {
-        arguments argv = {"/usr/bin/timeout", "--preserve-status", "0.3"};
+        arguments argv = {"/usr/bin/timeout", "--preserve-status", "1000"};
         const arguments command = clothlab_command(run);
         argv.insert(argv.end(), command.begin(), command.end());
-        result = wait_for(spawn({argv, work()}), work());
+        const pid_t timeout = spawn({argv, work()});
+        EXPECT_TRUE(run_has_begun()) << join(run) << ": no CSV begun within 60 s";
+        kill(timeout, SIGTERM);
+        result = wait_for(timeout, work());
       } else {
         const pid_t child = spawn({clothlab_command(run), work()});
-        usleep(300000);
+        EXPECT_TRUE(run_has_begun()) << join(run) << ": no CSV begun within 60 s";
         kill(child, SIGTERM);
         usleep(20000);
         kill(child, SIGTERM);
