@@ -488,7 +488,7 @@ def read_submission(work, lab, version, reference, submission, box):
             ["python3", "-I", "-S", str(scratch / "unpack.py"), str(source), str(unpacked),
              str(limits.submission), str(limits.entries), str(limits.student_file)],
             120, confinement.environment(scratch), out, cwd=scratch,
-            file_size=limits.student_file + 1)
+            file_size=limits.submission)  # (a repository's pack may be large; each file is cut)
     said = confinement.read_written(log, 1 << 20).decode("utf-8", "replace").strip()
     shutil.rmtree(scratch / "submission", ignore_errors=True)
     try:

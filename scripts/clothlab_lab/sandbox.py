@@ -228,6 +228,11 @@ class Sandbox:
         if self.root and self.kind != "none":
             subprocess.run(["setpriv", f"--reuid={self.uid}", f"--regid={self.uid}",
                             "--clear-groups", "--", "kill", "-KILL", "-1"], capture_output=True)
+            for _ in range(40):  # gone, not only signalled
+                if subprocess.run(["pgrep", "-u", str(self.uid)],
+                                  capture_output=True).returncode != 0:
+                    break
+                time.sleep(0.05)
 
     # -- running a command as the submission ---------------------------------------------
 

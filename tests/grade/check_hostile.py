@@ -109,9 +109,16 @@ UID = 65150  # the submissions' user of this test's graders (CLOTHLAB_GRADE_UID)
 
 
 def sandbox_processes():
-    """The processes of this test's submissions' user."""
-    out = subprocess.run(["ps", "-eo", "uid=,pid=,comm="], capture_output=True, text=True).stdout
-    return [line for line in out.splitlines() if int(line.split()[0]) == UID]
+    """The processes of this test's submissions' user, a few seconds after its grader ended
+    (a process killed takes a moment to be gone)."""
+    for _ in range(50):
+        out = subprocess.run(["ps", "-eo", "uid=,pid=,stat=,comm="], capture_output=True,
+                             text=True).stdout
+        left = [line for line in out.splitlines() if int(line.split()[0]) == UID]
+        if not left:
+            return []
+        time.sleep(0.1)
+    return left
 
 
 def main():
