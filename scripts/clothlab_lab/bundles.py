@@ -9,33 +9,9 @@ from pathlib import Path
 from . import grading
 from .manifest import ROOT
 
-SETUP_SH = """#!/usr/bin/env bash
-# Gradescope runs this once, when it builds the autograder's image: the Debian/Ubuntu packages
-# of clothlab, then the student copy's question tests, built once (clothlab-grade/copy).
-set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-export DEBIAN_FRONTEND=noninteractive
-apt-get update -q
-apt-get install -y -q --no-install-recommends ninja-build bubblewrap git @PACKAGES@
-python3 "$here/clothlab-grade/grade" --kit "$here/clothlab-grade" --prepare
-"""
-
-
-RUN_AUTOGRADER = """#!/usr/bin/env bash
-# Gradescope runs this for each submission: the student's files from /autograder/submission
-# (a copy of the project, an archive of one, or the files themselves), graded by the teacher's
-# tests, the result in /autograder/results/results.json. AUTOGRADER_ROOT moves /autograder (for
-# a trial run elsewhere); CLOTHLAB_GRADE_KIT names an already built kit.
-set -uo pipefail
-root=${AUTOGRADER_ROOT:-/autograder}
-# Gradescope copies this file to /autograder/run_autograder; the bundle is in /autograder/source.
-here=$root/source
-[ -d "$here/clothlab-grade" ] || here=$(cd "$(dirname "$0")" && pwd)
-kit=${CLOTHLAB_GRADE_KIT:-$here/clothlab-grade}
-mkdir -p "$root/results"
-python3 "$here/clothlab-grade/grade" --kit "$kit" "$root/submission" --name submission \\
-  --out "$root/results/clothlab" --gradescope-results "$root/results/results.json"
-"""
+# The bundle's two scripts, teacher-only files of their own: setup.sh (its @PACKAGES@ filled
+# in from scripts/setup.sh) and run_autograder.
+TEMPLATES = ROOT / "grading" / "gradescope"
 
 
 def debian_packages():
@@ -52,8 +28,9 @@ def make_bundle(path):
         shutil.copy2(ROOT / "scripts/grade", kit / "grade")
         shutil.copytree(Path(__file__).resolve().parent, kit / "clothlab_lab",
                         ignore=shutil.ignore_patterns("__pycache__"))
-        files = {"setup.sh": SETUP_SH.replace("@PACKAGES@", debian_packages()),
-                 "run_autograder": RUN_AUTOGRADER}
+        setup = (TEMPLATES / "setup.sh").read_text()
+        files = {"setup.sh": setup.replace("@PACKAGES@", debian_packages()),
+                 "run_autograder": (TEMPLATES / "run_autograder").read_text()}
         with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as bundle:
             for name, text in files.items():
                 info = zipfile.ZipInfo(name)

@@ -168,7 +168,7 @@ def submission_targets(work, lab):
     """What a submission's build makes: the runners, where tests/lab has them (the checkers,
     built once with the kit, link no student code), else the question tests."""
     runners = sorted({runner_of(p).name for p in (build_dir(work) / "tests" / "lab").glob(
-        "lab_q*") if runner_of(p)})
+        "lab_q*_tests") if runner_of(p)})
     return runners or lab_targets(lab)
 
 
@@ -247,12 +247,13 @@ def warm_mesa_cache(work, tests):
 
 
 def runner_of(program):
-    """The runner that a question's checker starts, where tests/lab splits each question's
-    tests in two (the checker holds the assertions and links no student code; the runner links
-    the student's code and hands back what it computed), else None (one program does both)."""
-    label = re.match(r"lab_(q\d+)_", Path(program).name)
-    found = sorted(Path(program).parent.glob(f"lab_{label.group(1)}_runner*")) if label else []
-    return next((f for f in found if f.is_file() and os.access(f, os.X_OK)), None)
+    """The runner that a question's checker starts (tests/lab: the checker lab_qN_tests holds
+    the assertions and links no student code; lab_runner, beside it, links the student's code
+    and hands back what it computed), else None (one program does both)."""
+    if not re.match(r"lab_q\d+_", Path(program).name):
+        return None
+    runner = Path(program).parent / "lab_runner"
+    return runner if runner.is_file() and os.access(runner, os.X_OK) else None
 
 
 def run_program(command, run_dir, number, box, output_limit, timeout, verdicts):
@@ -649,12 +650,22 @@ def grade_class(args):
         warm_mesa_cache(work, tests)
         say(f"grade: the student copy is built ({time.monotonic() - started:.0f} s), "
             f"{len(tests)} question tests; sandbox: {box.description}")
+        # The tests that pass on the stubs (guards: they earn no points), found once for a kit:
+        # --prepare keeps them in guards.json (the Gradescope image), each submission reads it.
+        guards_file = work / "guards.json"
+        if args.kit and guards_file.is_file() and not args.prepare:
+            guards = set(json.loads(guards_file.read_text()))
+        else:
+            restore_base(work, box)
+            stub_results = run_tests(work, tests, box, args.jobs, 600)
+            guards = {name for name, (status, _) in stub_results.items() if status == "passed"}
+            if args.kit:
+                guards_file.write_text(json.dumps(sorted(guards), indent=1) + "\n")
         if args.prepare:
+            if args.kit:
+                say(f"grade: {len(guards)} tests pass on the stubs (guards), kept in "
+                    f"{guards_file}")
             return 0
-        # The tests that pass on the stubs (guards: they earn no points).
-        restore_base(work, box)
-        stub_results = run_tests(work, tests, box, args.jobs, 600)
-        guards = {name for name, (status, _) in stub_results.items() if status == "passed"}
         reference = {n: d for n, d in copy_files(work / "base" / "copy").items()
                      if n not in lab.student_files}
 

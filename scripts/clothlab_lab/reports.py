@@ -112,6 +112,11 @@ def gradescope_results(record, lab, version, confinement=""):
         "score": record["score"],
         "execution_time": record["seconds"],
         "output": output,
+        # Compiler errors hold <glm::dvec3>: plain text everywhere, never HTML (Gradescope's
+        # default for the top-level output).
+        "output_format": "text",
+        "test_output_format": "text",
+        "test_name_format": "text",
         "visibility": "visible",
         "stdout_visibility": "hidden",
         "extra_data": {"max_score": record["max_score"], "version": version,
@@ -121,7 +126,8 @@ def gradescope_results(record, lab, version, confinement=""):
         "tests": [{"name": f"{q}: {question_title(lab, q)}", "number": q[1:],
                    "score": info["score"], "max_score": points[q],
                    "status": "passed" if info["score"] >= points[q] else "failed",
-                   "output": info["output"], "visibility": "visible"}
+                   "output": info["output"], "output_format": "text",
+                   "visibility": "visible"}
                   for q, info in record["questions"].items()],
     }
 

@@ -1,6 +1,7 @@
 // The stand-in for the parallel CPU path (cloth_parallel.hpp) where it is not built: it says
 // why, and every function that would run it throws. Compiled in place of cloth_parallel.cpp by
-// the browser build (WebAssembly has no OpenMP here: src/core/CMakeLists.txt), and included by
+// the browser build (WebAssembly has no OpenMP here: src/core/CMakeLists.txt) and by a build
+// without OpenMP (Apple's clang: CLOTHLAB_NO_OPENMP), and included by
 // the student copy's cloth_parallel.cpp (the path would answer questions 6, 8, 9 and 13).
 #include <stdexcept>
 
@@ -16,6 +17,9 @@ const char* cloth_parallel::unavailable_reason() {
 #if defined(__EMSCRIPTEN__)
   return "the parallel CPU path (cpu-parallel) needs OpenMP threads, which the browser build "
          "does not have; use cpu";
+#elif defined(CLOTHLAB_NO_OPENMP)
+  return "the parallel CPU path (--backend cpu-parallel) needs OpenMP, which this build does not "
+         "have (CMake found none: Apple's clang has none); use --backend cpu";
 #else
   return "the parallel CPU path (--backend cpu-parallel) is in the teacher's copy: it computes "
          "questions 6, 8, 9 and 13 itself; use --backend cpu";

@@ -1,6 +1,7 @@
 // The one header through which clothlab's GL code reaches OpenGL.
-// The GL code is compiled four times from the same sources:
-//  - the window build (CLOTHLAB_GL_WINDOW) loads the functions with GLEW in a GLFW context;
+// The GL code is compiled up to four times from the same sources:
+//  - the window build (CLOTHLAB_GL_WINDOW) loads the functions with GLEW in a GLFW context (and
+//    so does the off-screen build of a system with neither OSMesa nor EGL: a hidden window);
 //  - the off-screen build (CLOTHLAB_GL_OSMESA) calls libOSMesa's exported entry points
 //    directly (GLEW cannot load functions in an OSMesa context);
 //  - the EGL build (CLOTHLAB_GL_EGL) calls glvnd's libOpenGL, which dispatches to the vendor

@@ -1,6 +1,7 @@
 // An OpenGL 3.3 core context, current on the calling thread while the object lives.
-// Three implementations: the GLFW window (src/window), and off screen the OSMesa buffer
-// (osmesa_context.cpp) or the EGL pbuffer (egl_context.cpp). The rendering and GPU simulation
+// The implementations: the GLFW window (src/window), and off screen the OSMesa buffer
+// (osmesa_context.cpp), the EGL pbuffer (egl_context.cpp) or, with neither, a hidden GLFW
+// window (hidden_window_context.cpp). The rendering and GPU simulation
 // code above it does not know which one it runs on; the context itself says (origin).
 #pragma once
 

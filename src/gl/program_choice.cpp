@@ -1,5 +1,7 @@
 #include "gl/program_choice.hpp"
 
+#include "gl/executable_path.hpp"
+
 #include <unistd.h>
 
 #include <cerrno>
@@ -21,9 +23,8 @@ bool gpu_device_node_present() {
 }
 
 int hand_over_to(const char* who, const char* name, const std::vector<std::string>& arguments) {
-  std::error_code ec;
-  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const auto program = (ec ? std::filesystem::path(".") : self.parent_path()) / name;
+  const auto self = executable_path();
+  const auto program = (self.empty() ? std::filesystem::path(".") : self.parent_path()) / name;
   std::vector<std::string> copies = arguments;
   std::vector<char*> args;
   for (std::string& argument : copies)
