@@ -157,11 +157,19 @@ def build_outside(work, lab, jobs):
     return process.returncode == 0, process.stdout
 
 
-def build_command(work, lab, jobs):
+def build_command(work, lab, jobs, targets=None):
     folder = build_dir(work)
     keep_going = ["-k", "0"] if (folder / "build.ninja").exists() else ["-k"]
     return ["cmake", "--build", str(folder), "-j", str(jobs), "--target",
-            *lab_targets(lab), "--", *keep_going]
+            *(targets or lab_targets(lab)), "--", *keep_going]
+
+
+def submission_targets(work, lab):
+    """What a submission's build makes: the runners, where tests/lab has them (the checkers,
+    built once with the kit, link no student code), else the question tests."""
+    runners = sorted({runner_of(p).name for p in (build_dir(work) / "tests" / "lab").glob(
+        "lab_q*_tests") if runner_of(p)})
+    return runners or lab_targets(lab)
 
 
 def build_submission(work, lab, box, jobs):
@@ -173,7 +181,8 @@ def build_submission(work, lab, box, jobs):
         os.chown(home, box.uid, box.uid)
     limit = box.limits.build_seconds
     with open(log, "wb") as out:
-        code, timed_out = box.run(build_command(work, lab, jobs), limit,
+        code, timed_out = box.run(build_command(work, lab, jobs, submission_targets(work, lab)),
+                                  limit,
                                   confinement.environment(home), out, cwd=kit_copy(work),
                                   cpu_seconds=limit)
     output = confinement.read_written(log, 4 * confinement.MiB).decode("utf-8", "replace")
@@ -216,18 +225,59 @@ def list_tests(work, lab):
     return tests
 
 
-def run_program(command, run_dir, number, box, output_limit, timeout):
-    """Runs one test program as the submission; returns (kind, messages, cases): kind "ran"
-    with cases {GoogleTest name: (passed | failed, messages)}, else timeout | output | crashed,
-    with messages."""
-    xml_path = run_dir / "results" / f"{number}.xml"
-    log_path = run_dir / "results" / f"{number}.log"
+def warm_mesa_cache(work, tests):
+    """Mesa's shader cache of the kit (work/mesa-cache), made once by running the stubs' test
+    programs (the teacher's code) outside the sandbox: each submission's tests start from a
+    copy of it, so that they compile only the student's shaders, and Mesa never creates its
+    1.3 MB index under the tests' limit on file size."""
+    cache = work / "mesa-cache"
+    if (cache / "mesa_shader_cache" / "index").is_file():
+        return
+    shutil.rmtree(cache, ignore_errors=True)
+    cache.mkdir(mode=0o700)
+    with tempfile.TemporaryDirectory(prefix="clothlab-grade-warm-") as tmp:
+        env = confinement.environment(Path(tmp), kit_copy(work))
+        env["XDG_CACHE_HOME"] = str(cache)
+        for program in sorted({command[0] for _, _, command in tests}):
+            try:
+                subprocess.run([program, "--gtest_brief=1"], env=env, cwd=tmp, timeout=300,
+                               capture_output=True)
+            except subprocess.TimeoutExpired:
+                pass
+
+
+def runner_of(program):
+    """The runner that a question's checker starts (tests/lab: the checker lab_qN_tests holds
+    the assertions and links no student code; lab_runner, beside it, links the student's code
+    and hands back what it computed), else None (one program does both)."""
+    if not re.match(r"lab_q\d+_", Path(program).name):
+        return None
+    runner = Path(program).parent / "lab_runner"
+    return runner if runner.is_file() and os.access(runner, os.X_OK) else None
+
+
+def run_program(command, run_dir, number, box, output_limit, timeout, verdicts):
+    """Runs one test program; returns (kind, messages, cases): kind "ran" with cases
+    {GoogleTest name: (passed | failed, messages)}, else timeout | output | crashed, with
+    messages. A program that links the student's code runs as the submission, in the sandbox;
+    a checker runs as the grader, out of it, and starts its runner in the sandbox (the words
+    of CLOTHLAB_LAB_SANDBOX), so that the verdict is never in the student's process."""
+    runner = runner_of(command[0])
+    results = verdicts if runner else run_dir / "results"
+    xml_path = results / f"{number}.xml"
+    log_path = results / f"{number}.log"
     command = command + [f"--gtest_output=xml:{xml_path}"]
     # The shaders and assets the tests read: those of the submission's copy (its own shaders).
     env = confinement.environment(run_dir / "home", run_dir.parent / "copy")
     with open(log_path, "wb") as log:
-        code, timed_out = box.run(command, timeout, env, log, cwd=run_dir / "cwd",
-                                  file_size=output_limit, cpu_seconds=int(timeout) + 2)
+        if runner:
+            env.update(CLOTHLAB_LAB_RUNNER=str(runner), CLOTHLAB_LAB_SANDBOX=json.dumps(
+                box.prefix(chdir=run_dir / "cwd")))
+            code, timed_out = box.run_outside(command, timeout, env, log, cwd=run_dir / "cwd",
+                                              file_size=output_limit)
+        else:
+            code, timed_out = box.run(command, timeout, env, log, cwd=run_dir / "cwd",
+                                      file_size=output_limit, cpu_seconds=int(timeout) + 2)
     if timed_out:
         return "timeout", [f"did not finish within {timeout:g} s (an endless loop? a loop "
                            "whose end condition never holds?); stopped"], None
@@ -270,11 +320,15 @@ def run_tests(work, tests, box, jobs, budget):
     limits = box.limits
     run_dir = scratch_of(work) / "run"
     shutil.rmtree(run_dir, ignore_errors=True)
+    verdicts = work / "verdicts"  # the checkers' results: out of the submission's reach
+    shutil.rmtree(verdicts, ignore_errors=True)
+    verdicts.mkdir(mode=0o700)
     for sub in ("cwd", "home", "results"):
         (run_dir / sub).mkdir(parents=True)
+    if (work / "mesa-cache").is_dir():
+        shutil.copytree(work / "mesa-cache", run_dir / "home" / ".cache", symlinks=False)
     if box.root:
-        for path in (run_dir, *(run_dir / sub for sub in ("cwd", "home", "results"))):
-            os.chown(path, box.uid, box.uid)
+        subprocess.run(["chown", "-R", f"{box.uid}:{box.uid}", str(run_dir)], check=True)
     programs = {}  # the build's program -> [(test name, GoogleTest name)]
     for _, name, command in tests:
         programs.setdefault(Path(command[0]), []).append((name, gtest_filter(command)))
@@ -291,7 +345,7 @@ def run_tests(work, tests, box, jobs, budget):
             return program, ("budget", [], None)
         command = [str(program), "--gtest_filter=" + ":".join(f for _, f in members)]
         return program, run_program(command, run_dir, next(numbers), box, limits.test_output,
-                                    2 * limits.test_seconds)
+                                    2 * limits.test_seconds, verdicts)
 
     def alone(program, name, test_filter):
         if spent():
@@ -299,7 +353,7 @@ def run_tests(work, tests, box, jobs, budget):
                                       "were spent (by tests that did not finish)"])
         kind, messages, cases = run_program(
             [str(program), f"--gtest_filter={test_filter}"], run_dir, next(numbers), box,
-            limits.test_output, limits.test_seconds)
+            limits.test_output, limits.test_seconds, verdicts)
         if kind == "ran" and test_filter in cases:
             return name, cases[test_filter]
         return name, (kind if kind != "ran" else "crashed", messages or ["did not report"])
@@ -351,7 +405,7 @@ NEXT_DIAGNOSTIC = re.compile(r"^[^\s:][^:]*:(\d+:)+ (warning|error): |^[^\s:][^:
 def first_error(output, copy_folder, in_file=None):
     """The compiler's first error (in in_file, if given), as the student would read it (paths
     relative to the copy)."""
-    text = output.replace(str(copy_folder) + "/", "")
+    text = output.replace(str(copy_folder) + "/", "").replace(str(copy_folder.parent) + "/", "")
     text = re.sub(r"(^|\s)(?:\.\./)+((?:src|shaders|tests)/)", r"\1\2", text, flags=re.MULTILINE)
     lines = text.splitlines()
     for i, line in enumerate(lines):
@@ -373,13 +427,15 @@ def first_error(output, copy_folder, in_file=None):
 
 
 def files_with_errors(output, student_files):
+    """The student's files whose compile failed: named by the compiler's diagnostics, or by
+    the build tool's FAILED line of their object (an assembler's error names neither)."""
     failing = set()
     for line in output.splitlines():
         match = DIAGNOSTIC.match(line)
-        if match:
-            for name in student_files:
-                if match.group("file").endswith(name):
-                    failing.add(name)
+        for name in student_files:
+            if match and match.group("file").endswith(name) or \
+                    line.startswith("FAILED: ") and line.rstrip().endswith(f"/{Path(name).name}.o"):
+                failing.add(name)
     return failing
 
 
@@ -433,7 +489,7 @@ def read_submission(work, lab, version, reference, submission, box):
             ["python3", "-I", "-S", str(scratch / "unpack.py"), str(source), str(unpacked),
              str(limits.submission), str(limits.entries), str(limits.student_file)],
             120, confinement.environment(scratch), out, cwd=scratch,
-            file_size=limits.student_file + 1)
+            file_size=limits.submission)  # (a repository's pack may be large; each file is cut)
     said = confinement.read_written(log, 1 << 20).decode("utf-8", "replace").strip()
     shutil.rmtree(scratch / "submission", ignore_errors=True)
     try:
@@ -591,6 +647,7 @@ def grade_class(args):
             except lab_manifest.ManifestError as error:
                 raise GradeError(str(error))
         tests = list_tests(work, lab)
+        warm_mesa_cache(work, tests)
         say(f"grade: the student copy is built ({time.monotonic() - started:.0f} s), "
             f"{len(tests)} question tests; sandbox: {box.description}")
         # The tests that pass on the stubs (guards: they earn no points), found once for a kit:

@@ -228,6 +228,11 @@ class Sandbox:
         if self.root and self.kind != "none":
             subprocess.run(["setpriv", f"--reuid={self.uid}", f"--regid={self.uid}",
                             "--clear-groups", "--", "kill", "-KILL", "-1"], capture_output=True)
+            for _ in range(40):  # gone, not only signalled
+                if subprocess.run(["pgrep", "-u", str(self.uid)],
+                                  capture_output=True).returncode != 0:
+                    break
+                time.sleep(0.05)
 
     # -- running a command as the submission ---------------------------------------------
 
@@ -305,6 +310,28 @@ class Sandbox:
         return code, timed_out
 
 
+    def run_outside(self, argv, seconds, env, stdout, cwd=None, file_size=None):
+        """Runs a program of the teacher's (a checker) as the grader, out of the sandbox but
+        within the limits and in the submission's cgroup; (exit status, timed out). Its process
+        group ends when it returns: the bubblewrap of the runner it started, and so the runner
+        (--die-with-parent)."""
+        process = subprocess.Popen(
+            [str(a) for a in argv], cwd=cwd, env=env, stdout=stdout, stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL,
+            preexec_fn=self.limit(seconds + 2, file_size or self.limits.file_size))
+        try:
+            code, timed_out = process.wait(timeout=seconds), False
+        except subprocess.TimeoutExpired:
+            code, timed_out = None, True
+        try:
+            os.killpg(process.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        if code is None:
+            code = process.wait()
+        return code, timed_out
+
+
 def bubblewrap_words(scratch, readable, chdir, tmp_bytes):
     words = ["bwrap", "--unshare-all", "--die-with-parent", "--new-session",
              "--ro-bind", "/usr", "/usr", "--proc", "/proc", "--dev", "/dev"]
@@ -330,7 +357,8 @@ def environment(home, data_dir=None):
     """The environment of a submission's process: nothing of the grader's."""
     env = {"PATH": "/usr/local/bin:/usr/bin:/bin", "HOME": str(home), "TMPDIR": str(home),
            "LC_ALL": "C.UTF-8", "LANG": "C.UTF-8", "GTEST_COLOR": "no", "CCACHE_DISABLE": "1",
-           "MESA_SHADER_CACHE_DISABLE": "true", "XDG_CACHE_HOME": str(home),
+           # Mesa's shader cache in the home (Mesa would take the passwd entry's home)
+           "XDG_CACHE_HOME": str(Path(home) / ".cache"),
            "USER": "student", "LOGNAME": "student"}
     if data_dir:
         env["CLOTHLAB_DATA_DIR"] = str(data_dir)

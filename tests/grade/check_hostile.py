@@ -23,7 +23,7 @@ their 80 points. The class:
                     smudge filter (and a hook) that would break every file and touch a file
                     outside: graded on the bytes of its commit, and nothing runs
   troedel           the solution as a .tar.gz whose own name and one file name are not UTF-8
-  eve-zipbomb       a .zip of 300 MB of zeros (about 300 KB)
+  eve-zipbomb       a .zip of 300 MB of zeros (about 300 KB): cut at 2 MB, nothing graded
   eve-entries       a .tar.gz of 30,000 empty files
   @SUM(1+1), -2+3   names that a spreadsheet would read as formulas
 Then, graded alone with --build-timeout 20: a compile that never ends (constexpr loops), and
@@ -105,10 +105,20 @@ class Listener:
             connection.close()
 
 
+UID = 65150  # the submissions' user of this test's graders (CLOTHLAB_GRADE_UID): no other's
+
+
 def sandbox_processes():
-    """The processes of the graders' submission users (uid 64990 and after)."""
-    out = subprocess.run(["ps", "-eo", "uid=,pid=,comm="], capture_output=True, text=True).stdout
-    return [line for line in out.splitlines() if 64990 <= int(line.split()[0]) < 65090]
+    """The processes of this test's submissions' user, a few seconds after its grader ended
+    (a process killed takes a moment to be gone)."""
+    for _ in range(50):
+        out = subprocess.run(["ps", "-eo", "uid=,pid=,stat=,comm="], capture_output=True,
+                             text=True).stdout
+        left = [line for line in out.splitlines() if int(line.split()[0]) == UID]
+        if not left:
+            return []
+        time.sleep(0.1)
+    return left
 
 
 def main():
@@ -238,7 +248,7 @@ def main():
 
         teacher_before = subprocess.run(["git", "-C", root, "status", "--porcelain"],
                                         capture_output=True, text=True).stdout
-        env = dict(os.environ, **{secret: "the grader's secret"})
+        env = dict(os.environ, **{secret: "the grader's secret", "CLOTHLAB_GRADE_UID": str(UID)})
         graded = run([root / "scripts/grade", *subs, "--out", out, "--work", kit,
                       "--scratch-size", "300"], env=env)
         print(graded.stdout + graded.stderr[-8000:])
@@ -272,7 +282,10 @@ def main():
               "the grader's secret" not in everything,
               "a line of docs/answers.md, /etc/passwd or the grader's environment is in the "
               "outputs")
-        check(str(root) not in everything, f"the teacher's path {root} is in the outputs")
+        others = "\n".join((p / "results.json").read_text() for p in out.iterdir()
+                           if p.is_dir() and p.name != "eve-incbin")  # (its own line quotes it)
+        check(str(root) not in others and "/var/tmp/clothlab-grade" not in everything and
+              str(kit) not in everything, "the teacher's or the grader's paths are in the outputs")
         check(listener.connections == 0, f"the host's socket was reached "
                                          f"{listener.connections} times")
         check(not (outside / "smudged").exists() and not (outside / "hooked").exists(),
@@ -281,7 +294,7 @@ def main():
               "the smudge filter's output was graded")
         check("not UTF-8" in names.get("tr_del", {}).get("output", ""),
               f"the file name that is not UTF-8 is not reported: {names.get('tr_del')}")
-        for bomb, words in (("eve-zipbomb", "refused"), ("eve-entries", "refused")):
+        for bomb, words in (("eve-zipbomb", "larger than 2 MB: cut"), ("eve-entries", "refused")):
             check(words in names.get(bomb, {}).get("output", ""),
                   f"{bomb}: not refused: {names.get(bomb, {}).get('output')}")
         with open(out / "grades.csv", newline="") as f:
@@ -308,7 +321,7 @@ def main():
         attack_file(maker, zero, '#include "/dev/zero"', "    return false;")
         began = time.monotonic()
         graded = run([root / "scripts/grade", forever, zero, "--out", work / "out-forever",
-                      "--work", kit, "--build-timeout", "20"])
+                      "--work", kit, "--build-timeout", "20"], env=env)
         spent = time.monotonic() - began
         print(graded.stderr[-3000:])
         for name in ("eve-forever", "eve-dev-zero"):
@@ -390,9 +403,12 @@ PATCH_PRELUDE = r"""#include <cstdint>
 #include <sys/mman.h>
 #include <unistd.h>
 // GoogleTest's record of a failed check, found by its symbol in the program.
+// (Weak: the library links before GoogleTest; the program that holds both resolves it.)
 extern "C" void clothlab_add_result() __asm__(
-    "_ZN7testing10TestResult17AddTestPartResultERKNS_13TestPartResultE");"""
-PATCH_BODY = """    auto* code = reinterpret_cast<unsigned char*>(&clothlab_add_result);
+    "_ZN7testing10TestResult17AddTestPartResultERKNS_14TestPartResultE") __attribute__((weak));"""
+PATCH_BODY = """    if (&clothlab_add_result == nullptr)
+      return false;
+    auto* code = reinterpret_cast<unsigned char*>(&clothlab_add_result);
     const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
     auto* start = reinterpret_cast<void*>(reinterpret_cast<std::uintptr_t>(code) & ~(page - 1));
     if (mprotect(start, 2 * page, PROT_READ | PROT_WRITE | PROT_EXEC) == 0)
@@ -407,7 +423,8 @@ def verdicts(maker, cls, work, kit, root, split):
     attack_file(maker, forged, FORGE_PRELUDE, FORGE_BODY)
     patched = maker.copy("eve-patch", cls, maker.stubs)
     attack_file(maker, patched, PATCH_PRELUDE, PATCH_BODY)
-    run([root / "scripts/grade", forged, patched, "--out", work / "out-verdicts", "--work", kit])
+    run([root / "scripts/grade", forged, patched, "--out", work / "out-verdicts", "--work", kit],
+        env=dict(os.environ, CLOTHLAB_GRADE_UID=str(UID)))
     for name in ("eve-forged-xml", "eve-patch"):
         path = work / "out-verdicts" / name / "results.json"
         got = json.loads(path.read_text())["score"] if path.exists() else None
