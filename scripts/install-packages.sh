@@ -108,15 +108,17 @@ if [ "$where" = macos ]; then
   exit 0
 fi
 
-# Debian and Ubuntu. OSMesa is left out where the release has none (Mesa 25.1 removed it:
-# Debian unstable, and the releases after Debian 13 and Ubuntu 25.04).
+# Debian and Ubuntu. What the build can do without is left out where the release has no package
+# of it: OSMesa (Mesa 25.1 removed it: Debian unstable, and the releases after Debian 13), Dear
+# ImGui and stb (scripts/setup.sh then compiles them from their sources).
+optional=" libosmesa6-dev libimgui-dev libstb-dev "
 apt_knows() { apt-cache show --no-all-versions "$1" >/dev/null 2>&1; }
 drop_unknown_optional() {
   local kept=() p
   apt_knows cmake || return 0  # (the package lists are empty: nothing can be told yet)
   for p in "${missing[@]}"; do
-    if [ "$p" = libosmesa6-dev ] && ! apt_knows "$p"; then
-      echo "clothlab: this release has no $p: $(explain osmesa)"
+    if [[ "$optional" == *" $p "* ]] && ! apt_knows "$p"; then
+      echo "clothlab: this release has no $p: $(explain "$(column "$p" 4)")"
     else
       kept+=("$p")
     fi

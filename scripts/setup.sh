@@ -33,18 +33,22 @@ if [ "$with_web" = 1 ]; then
 fi
 "$root/scripts/install-packages.sh" "${packages[@]}"
 
-# macOS: Homebrew has no Dear ImGui and no stb; their sources, once, into build-deps/ (the
-# version of Dear ImGui is one the code was compiled against: docs/platforms.md).
+# Dear ImGui and stb where the system has no package of them (Homebrew has neither; an older
+# Ubuntu may lack them): their sources, once, into build-deps/. That version of Dear ImGui is one
+# the code was compiled against (docs/platforms.md).
 options=()
-if [ "$("$root/scripts/install-packages.sh" --platform)" = macos ]; then
-  deps=$root/build-deps
+deps=$root/build-deps
+if ! pkg-config --exists imgui 2>/dev/null; then
   if [ ! -f "$deps/imgui/imgui.cpp" ]; then
     git clone -q --depth 1 --branch v1.92.2b https://github.com/ocornut/imgui "$deps/imgui"
   fi
+  options+=(-DCLOTHLAB_IMGUI_DIR="$deps/imgui")
+fi
+if ! pkg-config --exists stb 2>/dev/null; then
   if [ ! -f "$deps/stb/stb_image.h" ]; then
     git clone -q --depth 1 https://github.com/nothings/stb "$deps/stb"
   fi
-  options+=(-DCLOTHLAB_IMGUI_DIR="$deps/imgui" -DCLOTHLAB_STB_DIR="$deps/stb")
+  options+=(-DCLOTHLAB_STB_DIR="$deps/stb")
 fi
 
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
