@@ -18,7 +18,8 @@ rm -f "$web/build.status"
 echo $$ >"$web/build.pid"
 trap 'echo $? >"$web/build.status.new" && mv "$web/build.status.new" "$web/build.status"' EXIT
 
-packages=(emscripten cmake make python3 libimgui-dev libglm-dev libstb-dev)
+# (xz-utils: tar unpacks Dear ImGui's sources, a .tar.xz, with it; a minimal Debian lacks it.)
+packages=(emscripten cmake make python3 xz-utils libimgui-dev libglm-dev libstb-dev)
 if [ "${1:-}" = "--with-browser" ]; then
   packages+=(chromium chromium-driver)
 fi

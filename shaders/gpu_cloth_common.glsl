@@ -6,7 +6,8 @@
 // (src/gl/shader.cpp).
 
 // The 12 particles a particle can be joined to (handout figure 6): (du, dv) and the spring family
-// (0 structural, 1 shear, 2 bending). Bit i of a particle's spring mask is neighbours[i].
+// (0 structural, 1 shear, 2 bending). Bit i of a particle's spring mask is neighbours[i]. The C++
+// code's neighbour_offsets (src/core/grid_neighbours.hpp), in GLSL: a test checks they are equal.
 const int neighbour_count = 12;
 const ivec3 neighbours[neighbour_count] = ivec3[neighbour_count](
     ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0),       // structural, h

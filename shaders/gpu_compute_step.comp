@@ -1,4 +1,4 @@
-// The compute-shader GPU path (--backend gpu-compute, issue 9), pass 1: one step of
+// The compute-shader GPU path (--backend gpu-compute), pass 1: one step of
 // docs/model.md for particle (ku, kv) = this invocation, in single precision: the same step as
 // gpu_step.frag (forces from the positions and normals at the start of the step, the springs
 // of the mask only, then gpu_cloth_common.glsl's integrator, sphere and ground), on shader

@@ -12,10 +12,12 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "app/run_control.hpp"
 #include "app/run_outputs.hpp"
+#include "app/step_error.hpp"
 #include "app/sweep_command.hpp"
 #include "core/export.hpp"
 #include "core/stability.hpp"
@@ -125,6 +127,28 @@ int write_cpu_png(const options& o, run_outputs& out, const Stage& stage) {
   });
 }
 
+// --start 1d, question 2: of v1, only its component along the spring (p1 - p0) is kept, so that
+// the mass moves on the spring's line, the 1D model's motion (the window's "1D start" box).
+void keep_velocity_along_spring(single_spring& stage) {
+  particle_system& particles = stage.particles();
+  const glm::dvec3 axis = particles.get_position(1) - particles.get_position(0);
+  const glm::dvec3 v = particles.get_velocity(1);
+  particles.set_velocity(1, glm::dot(v, axis) / glm::dot(axis, axis) * axis);
+}
+
+// The class of a stage, as a student reads it in src/core/.
+const char* stage_class_name(stage_kind stage) {
+  switch (stage) {
+    case stage_kind::spring:
+      return "single_spring";
+    case stage_kind::coupled:
+      return "coupled_springs";
+    case stage_kind::cloth:
+      return "spring_mesh";
+  }
+  return "?";
+}
+
 // The CPU path, the same for the three stages: step 0 is the initial state, checked and
 // written like every other, then one step at a time: forces, integration, constraints (inside
 // stage.step()), divergence check, output.
@@ -132,8 +156,21 @@ template <class Stage>
 int run_cpu(const options& o, Stage& stage, run_outputs& out, double time_step) {
   progress_line progress("step", o.steps, clock_stride(stage.particles().size()));
   for (long s = 0; s <= o.steps; ++s) {
-    if (s > 0)
-      stage.step();
+    try {
+      if (s > 0)
+        stage.step();
+    } catch (const std::exception& error) {
+      // Exit 1 and one line naming the function that threw (found by replaying the run).
+      progress.clear();
+      Stage fresh(stage.parameters);
+      if constexpr (std::is_same_v<Stage, single_spring>) {
+        if (o.spring_1d_start)
+          keep_velocity_along_spring(fresh);
+      }
+      const std::string function = part_that_throws(fresh, stage_class_name(o.stage), s);
+      report("%s", step_error_line(function, s, time_step, error).c_str());
+      return exit_failure;
+    }
     if (const int status = after_step(o, stage, s, time_step, out, progress); status != 0)
       return status;
   }
@@ -183,6 +220,8 @@ int run_stage(const options& o, run_outputs& out) {
   switch (o.stage) {
     case stage_kind::spring: {
       single_spring stage(o.spring);
+      if (o.spring_1d_start)
+        keep_velocity_along_spring(stage);
       const int status = run_cpu(o, stage, out, o.spring.dynamics.time_step);
       return status == 0 && !o.png_path.empty() ? write_cpu_png(o, out, stage) : status;
     }

@@ -8,6 +8,7 @@
 // headless job here.
 #include <csignal>
 #include <cstdio>
+#include <exception>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -112,5 +113,14 @@ int main(int argc, char** argv) {
       return status;
 #endif
   }
-  return clothlab::run_headless(o);
+  // Anything thrown past the run (the steps' own errors are reported by the run, naming the
+  // function): exit 1 and one line, never std::terminate's abort.
+  try {
+    return clothlab::run_headless(o);
+  } catch (const std::exception& error) {
+    clothlab::report("%s", clothlab::one_line(error.what()).c_str());
+  } catch (...) {
+    clothlab::report("stopped by an exception that is not a std::exception");
+  }
+  return clothlab::exit_failure;
 }

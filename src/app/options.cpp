@@ -286,6 +286,10 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   auto* mass_option = add_number("--mass", mass, "Mass of each moving particle, kg (1)", false);
   auto* gravity_option =
       add_number("--gravity", gravity, "Gravity g0 along -z, m/s^2 (9.8)", false);
+  std::string start;
+  app.add_option("--start", start,
+                 "Single spring: 3d (default, v1 = (1,-1,0)) | 1d (v1 along the spring)")
+      ->check(CLI::IsMember({"3d", "1d"}));
   app.add_option("--chain", o.coupled.mass_count, "Moving masses of the coupled stage")
       ->capture_default_str();
   app.add_option("--N", cloth.grid_size, "Cloth grid size: N x N particles")->capture_default_str();
@@ -421,6 +425,10 @@ parse_result parse_command_line(int argc, const char* const* argv) {
     const char* spring_options[] = {"--K"};
     refuse_unless(o.stage != stage_kind::cloth, spring_options, std::size(spring_options),
                   "the spring stages' stiffness (the cloth's: --K-struct, --K-shear, --K-bend);");
+    const char* single_spring_options[] = {"--start"};
+    refuse_unless(o.stage == stage_kind::spring, single_spring_options,
+                  std::size(single_spring_options), "the single spring's option (--stage spring);");
+    o.spring_1d_start = start == "1d";
     const char* chain_options[] = {"--chain"};
     refuse_unless(o.stage == stage_kind::coupled, chain_options, std::size(chain_options),
                   "the chain's option (--stage coupled);");

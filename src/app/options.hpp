@@ -40,6 +40,9 @@ struct options {
   double sweep_time = 2.0;                // s simulated in each cell
   long frames = 0;                        // window: run this many frames and exit (0: until closed)
   single_spring_parameters spring;
+  // --start 1d: the single spring's v1 along the spring (question 2's 1D motion), as the
+  // window's "1D start" box; else the handout's v1 = (1, -1, 0), across the spring.
+  bool spring_1d_start = false;
   coupled_springs_parameters coupled;
   cloth_parameters cloth;
 };

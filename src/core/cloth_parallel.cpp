@@ -10,6 +10,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/grid_neighbours.hpp"  // spring_kinds: the neighbours ahead of a vertex
+
 // The two loops that do the work are compiled three times, for AVX-512, AVX2 and the baseline
 // x86-64 (SSE2), and the first call picks the widest the CPU has (GCC's function
 // multi-versioning): the binary still runs on a CPU without AVX2. The file is compiled with
@@ -25,15 +27,24 @@ namespace clothlab {
 namespace {
 
 // The far end (ku + du, kv + dv) of each kind of spring, as an offset of the flat index, and its
-// family (cloth_parallel::kinds, in the order of the header).
+// family (cloth_parallel::kinds, in the order of the header): each family's neighbours that lie
+// ahead of the vertex (dv > 0, or dv = 0 and du > 0), in the order of grid_neighbours.hpp, so
+// that every spring is of one kind, seen from its lower end.
 struct spring_kind {
   int du, dv;
   spring_family family;
 };
-constexpr spring_kind spring_kinds[] = {
-    {1, 0, spring_family::structural}, {0, 1, spring_family::structural},
-    {1, 1, spring_family::shear},      {-1, 1, spring_family::shear},
-    {2, 0, spring_family::bending},    {0, 2, spring_family::bending}};
+constexpr std::array<spring_kind, 6> spring_kinds = [] {
+  std::array<spring_kind, 6> kinds{};
+  std::size_t kind = 0;
+  for (const spring_family family : all_spring_families) {
+    for (const grid_offset o : family_neighbours(family)) {
+      if (o.dv > 0 || (o.dv == 0 && o.du > 0))
+        kinds.at(kind++) = {o.du, o.dv, family};
+    }
+  }
+  return kinds;
+}();
 
 int kind_of(int du, int dv) {
   for (int kind = 0; kind < 6; ++kind) {

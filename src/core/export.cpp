@@ -139,6 +139,22 @@ output_file::~output_file() {
   discard();
 }
 
+namespace {
+
+// A temporary file's name pattern in the system's temporary folder (TMPDIR, else /tmp); empty,
+// with the error set, when that folder cannot be used.
+std::string temporary_pattern(std::string& error) {
+  std::error_code ec;
+  const std::filesystem::path folder = std::filesystem::temp_directory_path(ec);
+  if (ec) {
+    error = "the temporary folder (TMPDIR): " + ec.message();
+    return {};
+  }
+  return (folder / "clothlab-XXXXXX").string();
+}
+
+}  // namespace
+
 bool output_file::open(const std::string& target, writer kind, std::string& error) {
   discard();
   target_ = target;
@@ -150,7 +166,9 @@ bool output_file::open(const std::string& target, writer kind, std::string& erro
     if (kind == writer::stream) {
       return true;  // written directly
     }
-    temporary_ = (std::filesystem::temp_directory_path() / "clothlab-XXXXXX").string();
+    temporary_ = temporary_pattern(error);
+    if (temporary_.empty())
+      return false;
     copy_into_target_ = true;
   } else {
     const std::filesystem::path path(target);
@@ -168,7 +186,9 @@ bool output_file::open(const std::string& target, writer kind, std::string& erro
       return true;  // written directly
     // A writer that needs a file name writes into the system's temporary folder, and commit()
     // copies the whole file into the target.
-    temporary_ = (std::filesystem::temp_directory_path() / "clothlab-XXXXXX").string();
+    temporary_ = temporary_pattern(error);
+    if (temporary_.empty())
+      return false;
     copy_into_target_ = true;
     if (create_temporary(temporary_))
       return true;

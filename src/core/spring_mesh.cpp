@@ -6,22 +6,10 @@
 #include <string>
 
 #include "core/contacts.hpp"
+#include "core/grid_neighbours.hpp"  // structural_neighbours, ... (handout, figure 6)
 #include "core/integrator.hpp"
 
 namespace clothlab {
-namespace {
-
-// The neighbours s(ku + du, kv + dv) that a spring joins to the vertex s(ku, kv), per family
-// (handout, figure 6).
-struct grid_offset {
-  int du;
-  int dv;
-};
-constexpr grid_offset structural_neighbours[] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-constexpr grid_offset shear_neighbours[] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
-constexpr grid_offset bending_neighbours[] = {{2, 0}, {0, 2}, {-2, 0}, {0, -2}};
-
-}  // namespace
 
 spring_mesh::spring_mesh(const cloth_parameters& p) : parameters(p) {
   load_model();

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/stability.hpp"
+#include "gl/gl_state_guard.hpp"
 #include "gl/shader.hpp"  // shader_path
 
 namespace clothlab {
@@ -133,8 +134,7 @@ void cloth_paths::read_normals(std::vector<float>& rgba) {
   const auto n = static_cast<std::size_t>(cloth.grid_size());
   rgba.resize(4 * n * n);
   // Read through a framebuffer (OpenGL ES has no glGetTexImage), the caller's one bound again.
-  GLint read_framebuffer = 0;
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer);
+  const saved_gl_state saved;
   GLuint framebuffer = 0;
   glGenFramebuffers(1, &framebuffer);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
@@ -143,7 +143,6 @@ void cloth_paths::read_normals(std::vector<float>& rgba) {
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, static_cast<GLsizei>(n), static_cast<GLsizei>(n), GL_RGBA, GL_FLOAT,
                rgba.data());
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read_framebuffer));
   glDeleteFramebuffers(1, &framebuffer);
 }
 
@@ -158,6 +157,7 @@ void cloth_paths::copy_compute_state_to_textures() {
   const int n = gpu_compute_.grid_size();
   if (n == 0)
     return;
+  const saved_gl_state saved;  // the caller's texture and unpack buffer bindings, restored
   if (compute_texture_size_ != n) {
     for (GLuint* texture : {&compute_textures_.position, &compute_textures_.normal}) {
       if (*texture == 0)
@@ -193,8 +193,6 @@ void cloth_paths::copy_compute_state_to_textures() {
     glBindTexture(GL_TEXTURE_2D, compute_textures_.spring_mask);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, n, n, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
   }
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-  glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 backend_comparison cloth_paths::measure(int steps) {

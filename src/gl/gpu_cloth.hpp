@@ -1,11 +1,8 @@
 // Handout section 5, questions 11 to 13: the cloth of spring_mesh simulated on the GPU with
 // fragment shaders, in single precision, by exactly the model of docs/model.md.
 //
-// The spring mask (tearing, an addition): an N x N GL_R32UI texture whose texel (ku, kv) has bit
-// i set while a spring joins the particle to its neighbour neighbour_offsets[i] (inside the grid,
-// not torn). The tear pass writes it into the other copy of a ping-pong pair. A spring's two ends
-// compute its length from the same two floats (|p_i - p_j| = |p_j - p_i| bitwise), so they agree
-// on whether it tore.
+// What both GPU paths share (the spring masks, the rest and tear lengths, the step's uniforms)
+// is in gpu_step_inputs.hpp; the GL state guard in gl_state_guard.hpp.
 //
 // Every call needs the GL context current in which load() was called; destroy the gpu_cloth
 // before that context. step() and read_state() leave the GL state they change (framebuffer
@@ -20,83 +17,14 @@
 
 #include "core/spring_mesh.hpp"
 #include "gl/gl.hpp"
+#include "gl/gpu_step_inputs.hpp"
 #include "gl/shader.hpp"
 
 namespace clothlab {
 
-// The 12 neighbours a particle can be joined to (handout figure 6), in the order of the spring
-// mask's bits and of the shaders' neighbours[] tables: (du, dv, family), family 0 structural,
-// 1 shear, 2 bending.
-inline constexpr int neighbour_count = 12;
-inline constexpr std::array<std::array<int, 3>, neighbour_count> neighbour_offsets = {
-    {{1, 0, 0},
-     {-1, 0, 0},
-     {0, 1, 0},
-     {0, -1, 0},  // structural, h
-     {1, 1, 1},
-     {-1, -1, 1},
-     {1, -1, 1},
-     {-1, 1, 1},  // shear, h√2
-     {2, 0, 2},
-     {-2, 0, 2},
-     {0, 2, 2},
-     {0, -2, 2}}};  // bending, 2h
-
-// The spring mask of the cloth (see above), one word per particle k = ku + N kv, into `masks`.
-void spring_masks(const spring_mesh& cloth, std::vector<std::uint32_t>& masks);
-// Removes from the cloth the springs that the mask says are torn (both paths' read_state).
-void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& cloth);
 // Both paths' read_particle(k): throws std::logic_error before a load (grid_size 0) and
 // std::out_of_range when k is outside the N x N grid, naming `who`.
 void check_particle_index(const char* who, int grid_size, std::size_t k);
-
-// (1 + strain) L0 of the three families, the lengths beyond which their springs tear.
-// L0 of the structural, shear and bending springs (h, h√2 and 2h), the GPU's uniforms: the
-// distances in the initial flat cloth from s(0, 0) to s(1, 0), s(1, 1) and s(2, 0).
-std::array<float, 3> family_rest_lengths(const spring_mesh& cloth);
-std::array<float, 3> tear_lengths(double strain, const std::array<float, 3>& rest_length);
-
-// The uniforms of one step of the model (shaders/gpu_step.frag, gpu_compute_step.comp): their
-// locations, looked up once, and the values last sent, so that a batch sends nothing when the
-// parameters have not changed since the last one.
-class step_uniforms {
- public:
-  // Looks the locations up in `program` (after it is linked); forgets the values sent.
-  void locate(const shader_program& program);
-  // Sets the uniforms for the cloth parameters p (effective: question 10's scaling applied) on
-  // the program in use, the one located, unless they are those it already holds.
-  void set(const cloth_parameters& p, int grid_size, const std::array<float, 3>& rest_length);
-
- private:
-  struct values {
-    int grid_size = 0;
-    std::array<float, 3> stiffness{}, rest_length{};
-    float time_step = 0, damping = 0, mass = 0, gravity = 0;
-    int explicit_euler = 0;
-    float wind_strength = 0;
-    std::array<float, 3> wind_direction{};
-    int drag_enabled = 0;
-    std::array<int, 2> drag_texel{};
-    std::array<float, 3> drag_target{};
-    float drag_stiffness = 0;
-    int sphere_enabled = 0;
-    std::array<float, 3> sphere_centre{};
-    float sphere_radius = 0, sphere_friction = 0;
-    int ground_enabled = 0;
-    float ground_height = 0, ground_friction = 0;
-    bool operator==(const values&) const = default;
-  };
-  struct locations {
-    GLint grid_size = -1, stiffness = -1, rest_length = -1, time_step = -1, damping = -1, mass = -1,
-          gravity = -1, explicit_euler = -1, wind_strength = -1, wind_direction = -1,
-          drag_enabled = -1, drag_texel = -1, drag_target = -1, drag_stiffness = -1,
-          sphere_enabled = -1, sphere_centre = -1, sphere_radius = -1, sphere_friction = -1,
-          ground_enabled = -1, ground_height = -1, ground_friction = -1;
-  };
-  locations at_;
-  values sent_;
-  bool sent_once_ = false;
-};
 
 // One particle's state as a path holds it (single precision, widened): read_particle.
 struct particle_state {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "gl/gl_state_guard.hpp"
 #include "gl/gpu_cloth.hpp"
 
 namespace clothlab {
@@ -88,6 +89,8 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
   release();
   if (!available(error))
     return false;
+  const saved_gl_state saved_state;  // the caller's program, bindings, ... restored on return
+  const saved_storage_buffer saved_buffer;
   if (step_program_.id() == 0) {
     if (!step_program_.load_compute("gpu_compute_step.comp", error))
       return false;
@@ -131,7 +134,6 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
   glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  glUseProgram(0);
   return true;
 }
 
@@ -145,6 +147,8 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
     throw std::invalid_argument("gpu_cloth_compute::run: " + error);
   if (count < 1)
     return 0;
+  const saved_gl_state saved_state;  // the caller's program, bindings, ... restored on return
+  const saved_storage_buffer saved_buffer;
   step_program_.use();
   step_uniforms_.set(p, grid_size_, rest_length_);
   const bool check = speed_bound > 0.0;
@@ -199,7 +203,6 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
-  glUseProgram(0);
   if (!check)
     return 0;
   std::vector<std::uint32_t>& counts = diverged_counts_;  // count of them, from above
@@ -220,6 +223,7 @@ void gpu_cloth_compute::read_state(spring_mesh& cloth) const {
     throw std::invalid_argument(
         "gpu_cloth_compute::read_state: the cloth has N = " + std::to_string(cloth.grid_size()) +
         ", the GPU state N = " + std::to_string(grid_size_));
+  const saved_storage_buffer saved_buffer;
   particle_system& particles = cloth.particles();
   const std::size_t count = particles.size();
   readback_.resize(4 * count);
@@ -245,6 +249,7 @@ void gpu_cloth_compute::read_state(spring_mesh& cloth) const {
 
 particle_state gpu_cloth_compute::read_particle(std::size_t k) const {
   check_particle_index("gpu_cloth_compute::read_particle", is_loaded() ? grid_size_ : 0, k);
+  const saved_storage_buffer saved_buffer;
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   std::array<std::array<float, 4>, 2> texels{};  // position, velocity
   const auto offset = static_cast<GLintptr>(k * sizeof(texels[0]));

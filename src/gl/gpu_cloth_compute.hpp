@@ -1,4 +1,4 @@
-// The compute-shader GPU path of the cloth (--backend gpu-compute, issue 9): the model of
+// The compute-shader GPU path of the cloth (--backend gpu-compute): the model of
 // docs/model.md in single precision, like gpu_cloth, but in OpenGL 4.3 compute shaders over
 // shader storage buffers (one vec4 per particle, particle k = ku + N kv at element k) instead of
 // fragment shaders over textures: no rasterisation, no framebuffer. One step, two dispatches:

@@ -64,7 +64,7 @@ inline constexpr float chain_fixed_point_radius = 0.045f;  // the fixed p0
 
 // The radius a mass (or the fixed p0) of stages 1 and 2 is drawn with, and picked by: its own
 // (above), or min_mass_pixels pixels where the view is so far away that it would be smaller (a
-// long chain framed whole: at n = 10 a 0.085 m mass was under a pixel). metres_per_pixel:
+// long chain framed whole: at n = 10 a 0.085 m mass is under a pixel). metres_per_pixel:
 // camera::metres_per_pixel.
 inline constexpr float min_mass_pixels = 3.0f;
 float drawn_mass_radius(float radius, float metres_per_pixel);

@@ -4,6 +4,7 @@
 // Display only: the renderer reads the simulation state, it never changes it.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "core/spring_mesh.hpp"
 #include "gl/camera.hpp"
 #include "gl/gl.hpp"
+#include "gl/png_capture.hpp"  // framebuffer_png, save_framebuffer_png
 
 namespace clothlab {
 
@@ -62,16 +64,8 @@ class renderer {
   double last_normals_seconds() const;
 
  private:
-  struct impl;
-  impl* impl_;
+  struct impl;  // renderer_impl.hpp
+  std::unique_ptr<impl> impl_;
 };
-
-// Reads the current framebuffer (width x height, RGBA8) as a PNG image, top row first, into
-// `png` (the file's bytes, e.g. for the web build to hand to the browser as a download). False
-// with error on a size below 1 x 1 or a failed encoding.
-bool framebuffer_png(int width, int height, std::vector<unsigned char>& png, std::string& error);
-// The same PNG written to the file `path`; false with error naming the path when it cannot be
-// written whole (a truncated file is removed).
-bool save_framebuffer_png(const std::string& path, int width, int height, std::string& error);
 
 }  // namespace clothlab

@@ -2,10 +2,12 @@
 
 #include "gl/executable_path.hpp"
 
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <utility>
+#include <vector>
 
 namespace clothlab {
 namespace {
@@ -47,11 +49,19 @@ bool read_text(const std::filesystem::path& path, std::string& text) {
   return true;
 }
 
+// The line numbers of the n-th included file start at n * included_lines (10001, 20001, ...),
+// its source-string number n: some compilers (Mesa) report every message of the syntax tree as
+// string 0, so the line number alone must tell the files apart.
+constexpr long included_lines = 10000;
+
 // Replaces each line `#include "FILE"` of a shader by FILE (from the shaders folder), so that
-// what the two GPU paths share is written once (gpu_cloth_common.glsl). The included lines are
-// numbered in source string 1 of the compiler's messages; a #line directive after them gives
-// the including file its own line numbers back. One level only: an included file includes none.
-bool expand_includes(const std::filesystem::path& path, std::string& source, std::string& error) {
+// what the two GPU paths share is written once (gpu_cloth_common.glsl). The lines of the n-th
+// included file are numbered from n * included_lines + 1 in source string n (#line), and
+// `files` gets its name at index n (index 0: the shader's own); a #line directive after them
+// gives the including file its own line numbers back. One level only: an included file
+// includes none.
+bool expand_includes(const std::filesystem::path& path, std::string& source,
+                     std::vector<std::string>& files, std::string& error) {
   std::istringstream lines(source);
   std::ostringstream out;
   int number = 0;
@@ -75,11 +85,52 @@ bool expand_includes(const std::filesystem::path& path, std::string& source, std
       error = included.string() + ": an included shader file includes another (one level only)";
       return false;
     }
-    out << "#line 1 1\n"
+    files.push_back("shaders/" + name);
+    const long n = static_cast<long>(files.size()) - 1;
+    out << "#line " << n * included_lines + 1 << " " << n << "\n"
         << text << (text.ends_with('\n') ? "" : "\n") << "#line " << number + 1 << " 0\n";
   }
   source = out.str();
   return true;
+}
+
+// The compiler's log with each message's place written as the file and its line: "0:10074(2):
+// error: ..." (Mesa), "ERROR: 1:10074: ..." (ANGLE, glslang) and "1(10074) : error ..." (NVIDIA)
+// become "shaders/gpu_cloth_common.glsl:74(2): error: ...", and so on.
+std::string name_source_strings(const std::string& log, const std::vector<std::string>& files) {
+  std::istringstream lines(log);
+  std::string named;
+  const auto digits_from = [](const std::string& text, std::size_t at) {
+    while (at < text.size() && std::isdigit(static_cast<unsigned char>(text[at])) != 0)
+      ++at;
+    return at;
+  };
+  for (std::string line; std::getline(lines, line);) {
+    std::size_t start = 0;
+    for (const std::string_view prefix : {"ERROR: ", "WARNING: "}) {
+      if (line.starts_with(prefix))
+        start = prefix.size();
+    }
+    const std::size_t string_end = digits_from(line, start);
+    const std::size_t line_end =
+        string_end + 1 < line.size() ? digits_from(line, string_end + 1) : 0;
+    if (string_end > start && line_end > string_end + 1 &&
+        (line[string_end] == ':' || line[string_end] == '(')) {
+      const long string_number = std::stol(line.substr(start, string_end - start));
+      const long number = std::stol(line.substr(string_end + 1, line_end - string_end - 1));
+      const long file = number > included_lines ? number / included_lines : string_number;
+      if (file < static_cast<long>(files.size())) {
+        const std::string place =
+            files[static_cast<std::size_t>(file)] + line[string_end] +
+            std::to_string(number > included_lines ? number % included_lines : number);
+        line.replace(start, line_end - start, place);
+      }
+    }
+    named += line + '\n';
+  }
+  if (!log.ends_with('\n') && !named.empty())
+    named.pop_back();
+  return named;
 }
 
 // Compiles one stage, the file after `header` (its #version line); returns 0 and sets error on
@@ -98,7 +149,8 @@ GLuint compile(GLenum type, std::string_view header, std::string_view file_name,
             "(src/gl/shader.cpp)";
     return 0;
   }
-  if (!expand_includes(path, source, error))
+  std::vector<std::string> files = {"shaders/" + std::string(file_name)};
+  if (!expand_includes(path, source, files, error))
     return 0;
   // "#line 1 0": the file's first line is line 1 in the compiler's messages, as in an editor.
   source = std::string(header) + "#line 1 0\n" + source;
@@ -113,7 +165,8 @@ GLuint compile(GLenum type, std::string_view header, std::string_view file_name,
     glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
     glGetShaderInfoLog(shader, length, nullptr, log.data());
-    error = path.string() + ": does not compile:\n" + log.c_str();
+    error = path.string() + ": does not compile (each message names its file and line):\n" +
+            name_source_strings(log.c_str(), files);
     glDeleteShader(shader);
     return 0;
   }

@@ -9,6 +9,11 @@
 #include <string>
 #include <string_view>
 
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
 #include "gl/gl.hpp"
 
 namespace clothlab {
@@ -40,6 +45,14 @@ class shader_program {
   GLuint id() const { return id_; }
   void use() const { glUseProgram(id_); }
   GLint uniform(const char* name) const { return glGetUniformLocation(id_, name); }
+  // Sets the uniform `name` of this program, which must be in use (use()); a name the program
+  // does not have (or that its compiler removed as unused) is ignored, as GL does.
+  void set(const char* name, const glm::mat4& value) const;
+  void set(const char* name, const glm::vec4& value) const;
+  void set(const char* name, const glm::vec3& value) const;
+  void set(const char* name, const glm::vec2& value) const;
+  void set(const char* name, float value) const;
+  void set(const char* name, int value) const;
 
  private:
   // Links the compiled shaders (and deletes them); files names them in an error.

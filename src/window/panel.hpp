@@ -1,6 +1,8 @@
 // The control panel (Dear ImGui): the readouts, the stage, the simulation control, every
 // parameter of docs/model.md for the current stage and the display toggles, in sections named
-// after the handout question each one answers. Also the key-help window (H).
+// after the handout question each one answers. Also the key-help window (H). panel.cpp lays the
+// panel out; its sections are in stage_editors, analysis_views and gpu_section, its widgets in
+// widgets, the banners over the scene in scene_banners.
 #pragma once
 
 #include <optional>
@@ -27,11 +29,8 @@ struct user_actions {
 
 inline constexpr int steps_per_backend_measurement = 200;  // question 12's "measure"
 // In ImGui's (screen) units at the default 13 px font, at the window's left; scaled with the
-// font on HiDPI screens (ui_scale).
+// font on HiDPI screens (ui_scale, widgets.hpp).
 inline constexpr float panel_width = 410.0f;
-
-// The size of the panel's things relative to the default font: 1, or the screen's scale.
-float ui_scale();
 
 // Builds this frame's panel at the window's left. Parameters and the simulation control are
 // edited in place in `the_scene`; everything else comes back in `actions`. Returns the width the

@@ -1,7 +1,7 @@
-// The mouse on the cloth and on the masses of stages 1 and 2 (issue 10): which particle is under
-// the cursor, and where the cursor is in the plane facing the camera through a point. Geometry
-// only, no GL: the window's mouse handler (window_main.cpp) and the scene (scene.cpp) call these,
-// and the tests run them alone.
+// The mouse on the cloth and on the masses of stages 1 and 2 (model.md, "drag"): which particle
+// is under the cursor, and where the cursor is in the plane facing the camera through a point.
+// Geometry only, no GL: the window's mouse handler (window_app.cpp) and the scene
+// (scene_mouse.cpp) call these, and the tests run them alone.
 #pragma once
 
 #include <glm/vec3.hpp>

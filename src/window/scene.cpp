@@ -11,8 +11,8 @@
 
 #include "core/stability.hpp"
 #include "gl/gl.hpp"
-#include "gl/render_geometry.hpp"  // chain_mass_radius, drawn_mass_radius
-#include "window/framing.hpp"      // chain_view
+#include "window/framing.hpp"         // chain_view
+#include "window/run_statistics.hpp"  // seconds_since
 
 namespace clothlab {
 
@@ -26,19 +26,16 @@ constexpr int gpu_steps_between_budget_checks = 8;
 // this long a frame (at least a cell), so that the page stays responsive while it fills in.
 constexpr double map_seconds_per_frame = 0.012;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
-scene::scene(const options& start)
-    : paths_(start.cloth),
-      spring_stage(start.spring),
-      chain_stage(start.coupled),
+scene::scene(stage_kind stage, const single_spring_parameters& spring,
+             const coupled_springs_parameters& chain, const cloth_parameters& cloth)
+    : paths_(cloth),
+      spring_stage(spring),
+      chain_stage(chain),
       cloth_stage(paths_.cloth),
-      view(camera::default_for(start.stage)),
-      stage_(start.stage) {}
+      view(camera::default_for(stage)),
+      stage_(stage) {}
 
 scene::~scene() = default;
 
@@ -47,34 +44,6 @@ bool scene::init_renderer(std::string& error) {
     renderer_name_ = reinterpret_cast<const char*>(name);
   paths_.check_compute_offered();
   return renderer_.init(error);
-}
-
-// Question 11: positions and velocities are the cloth's (on the GPU path, read back from its
-// textures once per frame); normals are read from the GPU's normal texture, or computed on the
-// CPU as the CPU path does (central differences, model.md).
-const state_images& scene::state_textures() {
-  const long step = status_[static_cast<int>(stage_kind::cloth)].step;
-  const bool from_gpu = cloth_on_gpu();
-  const int n = cloth_stage.grid_size();
-  if (step == state_images_step_ && from_gpu == state_images_from_gpu_ &&
-      state_images_.grid_size() == n)
-    return state_images_;
-  const particle_system& particles = cloth_stage.particles();
-  const auto texels = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
-  normal_scratch_.resize(3 * texels);
-  if (from_gpu) {
-    paths_.read_normals(texel_scratch_);
-    for (std::size_t k = 0; k < texels; ++k) {
-      for (std::size_t c = 0; c < 3; ++c)
-        normal_scratch_[3 * k + c] = texel_scratch_[4 * k + c];
-    }
-  } else {
-    compute_vertex_normals(n, particles.position, normal_scratch_);
-  }
-  state_images_.update(n, particles.position, particles.velocity, normal_scratch_);
-  state_images_step_ = step;
-  state_images_from_gpu_ = from_gpu;
-  return state_images_;
 }
 
 // ---- Initialisation ---------------------------------------------------------------------
@@ -139,270 +108,6 @@ void scene::select_stage(stage_kind stage) {
   view = framed_view();
   unsimulated_seconds_ = 0.0;
   restart_energy_history();
-}
-
-// ---- The cloth's path: CPU or GPU (questions 11 and 12) ---------------------------------
-
-// Uploads cloth_stage's current state to a GPU path.
-bool scene::load_gpu_path(cloth_backend target, std::string& why) {
-  return gpu_can_run(target, why) && paths_.load(target, why);
-}
-
-void scene::read_gpu_state() {
-  if (!on_gpu(paths_.backend()))
-    return;
-  paths_.read_state();
-  state_fresh_ = true;
-}
-
-void scene::switch_cloth_backend(cloth_backend target) {
-  const cloth_backend from = backend();
-  if (target == from)
-    return;
-  const long step = status_[static_cast<int>(stage_kind::cloth)].step;
-  std::string why;
-  if (on_gpu(target) && !gpu_can_run(target, why)) {
-    backend_message_ = std::string("The cloth stays on the ") + backend_name(from) + ": " + why;
-    std::printf("clothlab-window: %s\n", backend_message_.c_str());
-    std::fflush(stdout);
-    return;
-  }
-  // The new path takes the cloth's current state (positions, velocities, pins, rest lengths):
-  // read back from the GPU path it is on, if any.
-  read_gpu_state();
-  if (!paths_.load(target, why)) {  // the cloth is then on the CPU path
-    backend_message_ = "The cloth went to the CPU: " + why;
-    std::printf("clothlab-window: %s\n", backend_message_.c_str());
-    std::fflush(stdout);
-    return;
-  }
-  restart_rate_window();  // the stepping rate shown is the new path's
-  backend_message_ = std::string("cloth: ") + backend_name(from) + " -> " + backend_name(target) +
-                     " at step " + std::to_string(step);
-  std::printf("clothlab-window: %s\n", backend_message_.c_str());
-  std::fflush(stdout);
-}
-
-void scene::toggle_cloth_backend() {
-  switch (backend()) {
-    case cloth_backend::cpu:
-    case cloth_backend::cpu_parallel:
-      switch_cloth_backend(cloth_backend::gpu);
-      return;
-    case cloth_backend::gpu:
-      if (std::string why; compute_offered(why))
-        switch_cloth_backend(cloth_backend::gpu_compute);
-      else
-        switch_cloth_backend(cloth_backend::cpu);
-      return;
-    case cloth_backend::gpu_compute:
-      switch_cloth_backend(cloth_backend::cpu);
-      return;
-  }
-}
-
-void scene::fall_back_to_cpu(const std::string& reason) {
-  const cloth_backend from = backend();
-  read_gpu_state();
-  std::string none;
-  paths_.load(cloth_backend::cpu, none);  // loads nothing: the CPU cloth holds the state now
-  backend_message_ = std::string("cloth: ") + backend_name(from) + " -> CPU at step " +
-                     std::to_string(status_[static_cast<int>(stage_kind::cloth)].step) + ": " +
-                     reason;
-  std::printf("clothlab-window: %s\n", backend_message_.c_str());
-  std::fflush(stdout);
-}
-
-// After load_model of the cloth: the GPU path takes the new initial state (a new N, S or pins).
-void scene::reload_gpu_cloth() {
-  if (backend() == cloth_backend::cpu)
-    return;
-  std::string why;
-  if (!load_gpu_path(backend(), why)) {
-    std::string none;
-    paths_.load(cloth_backend::cpu, none);  // the cloth goes on from its new state on the CPU
-    backend_message_ = "The cloth went back to the CPU: " + why;
-    std::printf("clothlab-window: %s\n", backend_message_.c_str());
-    std::fflush(stdout);
-  }
-}
-
-// Question 12: the same number of steps of every path, from the current state, on copies
-// (cloth_paths::measure), said in one line.
-void scene::measure_backends(int steps) {
-  comparison_ = paths_.measure(steps);
-  const std::string& why = comparison_.gpu_error;
-  const std::string& compute_why = comparison_.compute_error;
-  std::printf(
-      "clothlab-window: N = %d, %d steps: CPU %.0f steps/s, GPU %.0f steps/s%s%s, GPU compute "
-      "%.0f steps/s%s%s\n",
-      comparison_.grid_size, steps, comparison_.cpu_steps_per_second,
-      comparison_.gpu_steps_per_second, why.empty() ? "" : ": ", why.c_str(),
-      comparison_.compute_steps_per_second, compute_why.empty() ? "" : ": ", compute_why.c_str());
-  std::fflush(stdout);
-}
-
-// ---- The mouse on the cloth (issue 10) -----------------------------------------------------
-
-pick_ray scene::ray_at(double x, double y) const {
-  const double ndc_x = 2.0 * (x - viewport_left_) / viewport_width_ - 1.0;
-  const double ndc_y = 1.0 - 2.0 * y / viewport_height_;
-  const float aspect = static_cast<float>(viewport_width_) / static_cast<float>(viewport_height_);
-  return ray_through(view, aspect, ndc_x, ndc_y);
-}
-
-double scene::radians_per_pixel() const {
-  return static_cast<double>(view.field_of_view) / viewport_height_;
-}
-
-std::optional<glm::dvec2> scene::framebuffer_point(const glm::dvec3& point) const {
-  const float aspect = static_cast<float>(viewport_width_) / static_cast<float>(viewport_height_);
-  const glm::dvec4 clip =
-      glm::dmat4(view.projection(aspect)) * glm::dmat4(view.view()) * glm::dvec4(point, 1.0);
-  if (clip.w <= 0.0)
-    return std::nullopt;
-  return glm::dvec2(viewport_left_ + (clip.x / clip.w + 1.0) / 2.0 * viewport_width_,
-                    (1.0 - clip.y / clip.w) / 2.0 * viewport_height_);
-}
-
-mass_drag_parameters* scene::mass_drag() {
-  return const_cast<mass_drag_parameters*>(std::as_const(*this).mass_drag());
-}
-
-const mass_drag_parameters* scene::mass_drag() const {
-  return stage_ == stage_kind::spring    ? &spring_stage.parameters.drag
-         : stage_ == stage_kind::coupled ? &chain_stage.parameters.drag
-                                         : nullptr;
-}
-
-const particle_system& scene::mass_particles() const {
-  return stage_ == stage_kind::spring ? spring_stage.particles() : chain_stage.particles();
-}
-
-bool scene::grabbing() const {
-  if (const mass_drag_parameters* drag = mass_drag())
-    return drag->enabled;
-  return cloth_stage.parameters.drag.enabled;
-}
-
-glm::dvec3 scene::drag_target() const {
-  if (const mass_drag_parameters* drag = mass_drag())
-    return drag->target;
-  return cloth_stage.parameters.drag.target;
-}
-
-bool scene::grab_particle(const pick_ray& ray, double max_angle) {
-  if (status().diverged)
-    return false;
-  if (mass_drag_parameters* drag = mass_drag()) {  // stages 1 and 2: a mass
-    const particle_system& particles = mass_particles();
-    // The spheres as drawn: at least a few pixels wide, however far the view.
-    const float metres_per_pixel = view.metres_per_pixel(static_cast<float>(viewport_height_));
-    const std::optional<std::size_t> picked =
-        pick_mass(particles, ray, drawn_mass_radius(chain_mass_radius, metres_per_pixel),
-                  drawn_mass_radius(chain_fixed_point_radius, metres_per_pixel), max_angle);
-    if (!picked)
-      return false;
-    const std::string stage = std::string(stage_name(stage_));
-    if (particles.is_fixed[*picked]) {
-      std::printf("clothlab-window: p%zu of the %s stage is fixed: it cannot be dragged\n", *picked,
-                  stage.c_str());
-      std::fflush(stdout);
-      return false;
-    }
-    const glm::dvec3 position = particles.get_position(*picked);
-    drag->enabled = true;
-    drag->mass = static_cast<int>(*picked);
-    drag->target = position;
-    grab_plane_point_ = position;
-    std::printf("clothlab-window: grabbed mass %zu of the %s stage at (%.3f, %.3f, %.3f)\n",
-                *picked, stage.c_str(), position.x, position.y, position.z);
-    std::fflush(stdout);
-    return true;
-  }
-  if (cloth_on_gpu())
-    read_gpu_state();  // the positions the user sees, once, at the press
-  const std::optional<std::size_t> picked = pick_particle(cloth_stage, ray, max_angle);
-  if (!picked)
-    return false;
-  const int n = cloth_stage.grid_size();
-  const int ku = static_cast<int>(*picked % static_cast<std::size_t>(n));
-  const int kv = static_cast<int>(*picked / static_cast<std::size_t>(n));
-  const glm::dvec3 position = cloth_stage.particles().get_position(*picked);
-  if (cloth_stage.particles().is_fixed[*picked]) {
-    std::printf("clothlab-window: particle (%d, %d) is pinned: it cannot be dragged\n", ku, kv);
-    std::fflush(stdout);
-    return false;
-  }
-  drag_parameters& drag = cloth_stage.parameters.drag;
-  drag.enabled = true;
-  drag.ku = ku;
-  drag.kv = kv;
-  drag.target = position;
-  grab_plane_point_ = position;
-  std::printf("clothlab-window: grabbed particle (%d, %d) at (%.3f, %.3f, %.3f)\n", ku, kv,
-              position.x, position.y, position.z);
-  std::fflush(stdout);
-  return true;
-}
-
-void scene::drag_grabbed(const pick_ray& ray) {
-  if (!grabbing())
-    return;
-  const glm::dvec3 target = point_on_plane(ray, grab_plane_point_, viewing_direction(view));
-  if (mass_drag_parameters* drag = mass_drag())
-    drag->target = target;
-  else
-    cloth_stage.parameters.drag.target = target;
-}
-
-void scene::release_grab() {
-  if (!grabbing())
-    return;
-  const glm::dvec3 position = grabbed_position();
-  if (mass_drag_parameters* drag = mass_drag()) {
-    drag->enabled = false;
-    std::printf(
-        "clothlab-window: released mass %d of the %s stage at (%.3f, %.3f, %.3f), target (%.3f, "
-        "%.3f, %.3f)\n",
-        drag->mass, std::string(stage_name(stage_)).c_str(), position.x, position.y, position.z,
-        drag->target.x, drag->target.y, drag->target.z);
-    std::fflush(stdout);
-    return;
-  }
-  drag_parameters& drag = cloth_stage.parameters.drag;
-  drag.enabled = false;
-  const std::size_t springs = cloth_spring_count();  // fewer than at the start when it tore
-  std::printf(
-      "clothlab-window: released particle (%d, %d) at (%.3f, %.3f, %.3f), target (%.3f, %.3f, "
-      "%.3f), %zu springs\n",
-      drag.ku, drag.kv, position.x, position.y, position.z, drag.target.x, drag.target.y,
-      drag.target.z, springs);
-  std::fflush(stdout);
-}
-
-glm::dvec3 scene::grabbed_position() {
-  if (const mass_drag_parameters* mass = mass_drag()) {
-    const particle_system& particles = mass_particles();
-    return particles.get_position(
-        std::min(static_cast<std::size_t>(std::max(mass->mass, 0)), particles.size() - 1));
-  }
-  const drag_parameters& drag = cloth_stage.parameters.drag;
-  const int n = cloth_stage.grid_size();
-  const std::size_t k =
-      spring_mesh::index(std::clamp(drag.ku, 0, n - 1), std::clamp(drag.kv, 0, n - 1), n);
-  return paths_.position(k);  // on a GPU path, one texel read back
-}
-
-void scene::start_sphere_move(const pick_ray& ray) {
-  const sphere_parameters& sphere = cloth_stage.parameters.sphere;
-  sphere_plane_point_ = sphere.centre;
-  sphere_grab_offset_ = point_on_plane(ray, sphere.centre, viewing_direction(view)) - sphere.centre;
-}
-
-void scene::move_sphere(const pick_ray& ray) {
-  cloth_stage.parameters.sphere.centre =
-      point_on_plane(ray, sphere_plane_point_, viewing_direction(view)) - sphere_grab_offset_;
 }
 
 double scene::current_time_step() const {
@@ -555,39 +260,11 @@ void scene::simulate(int steps, double wall_clock_budget) {
   if (on_gpu && done > 0 && (panel_needs_state || overlay_needs_state) && !state_fresh_ &&
       paths_.seconds_since_readback() >= 1.0 / max_readbacks_per_second)
     read_gpu_state();
-  measure_rates(done, stepping_seconds);
+  rates_.add_frame(done, stepping_seconds);
+  // The first tear: on the CPU path at the frame it happens, on the GPU paths at the read-back
+  // that brings it.
   if (stage_ == stage_kind::cloth && done > 0)
-    report_first_tear();
-}
-
-// The springs of the cloth as cloth_stage has them (on a GPU path, as of the last read-back).
-std::size_t scene::cloth_spring_count() const {
-  std::size_t springs = 0;
-  for (const spring_family family : all_spring_families)
-    springs += cloth_stage.springs(family).size();
-  return springs;
-}
-
-// The first tear of a cloth, said once until it is whole again (reset, rebuild): on the CPU path
-// at the frame it happens, on the GPU paths at the read-back that brings it.
-void scene::report_first_tear() {
-  // The springs of the whole N x N cloth (model.md): structural 2 N (N - 1), shear
-  // 2 (N - 1)^2, bending 2 N (N - 2).
-  const auto n = static_cast<std::size_t>(std::max(cloth_stage.grid_size(), 2));
-  const std::size_t whole = 2 * n * (n - 1) + 2 * (n - 1) * (n - 1) + 2 * n * (n - 2);
-  const std::size_t springs = cloth_spring_count();
-  if (springs >= whole) {
-    tear_reported_ = false;
-    return;
-  }
-  if (tear_reported_)
-    return;
-  tear_reported_ = true;
-  std::printf(
-      "clothlab-window: the cloth began to tear by step %ld (t = %.3f s): %zu of %zu "
-      "springs left\n",
-      status().step, status().time, springs, whole);
-  std::fflush(stdout);
+    tear_report_.check(cloth_stage, status().step, status().time);
 }
 
 // One step: force computation, then numerical integration (question 3), then the divergence
@@ -725,24 +402,12 @@ void scene::check_in_view() {
 void scene::record_energy() {
   if (status().diverged)
     return;
-  constexpr std::size_t frames_kept = 600;
-  energy_ = with_current_stage([](const auto& stage) { return compute_energy(stage); });
-  const double values[4] = {energy_.kinetic, energy_.gravity, energy_.spring, energy_.total};
-  for (std::size_t i = 0; i < energy_history_.size(); ++i) {
-    std::vector<float>& history = energy_history_[i];
-    if (history.size() == frames_kept)
-      history.erase(history.begin());
-    history.push_back(static_cast<float>(values[i]));
-  }
-  if (energy_times_.size() == frames_kept)
-    energy_times_.erase(energy_times_.begin());
-  energy_times_.push_back(static_cast<float>(status().time));
+  energy_history_.record(
+      with_current_stage([](const auto& stage) { return compute_energy(stage); }), status().time);
 }
 
 void scene::restart_energy_history() {
-  for (std::vector<float>& history : energy_history_)
-    history.clear();
-  energy_times_.clear();
+  energy_history_.clear();
   record_energy();
   record_spring_motion();
 }
@@ -752,33 +417,6 @@ void scene::restart_energy_history() {
 void scene::record_spring_motion() {
   if (stage_ == stage_kind::spring && !status().diverged)
     spring_motion_.record(spring_stage, status().time, status().step);
-}
-
-void scene::restart_rate_window() {
-  steps_in_rate_window_ = 0;
-  frames_in_rate_window_ = 0;
-  stepping_seconds_in_rate_window_ = 0.0;
-  measured_stepping_rate_ = 0.0;
-  rate_window_start_ = clock::now();
-}
-
-void scene::measure_rates(int steps, double stepping_seconds) {
-  steps_in_rate_window_ += steps;
-  frames_in_rate_window_ += 1;
-  stepping_seconds_in_rate_window_ += stepping_seconds;
-  const double seconds = seconds_since(rate_window_start_);
-  if (seconds >= 0.5) {
-    measured_steps_per_second_ = static_cast<double>(steps_in_rate_window_) / seconds;
-    measured_frames_per_second_ = static_cast<double>(frames_in_rate_window_) / seconds;
-    measured_stepping_rate_ =
-        stepping_seconds_in_rate_window_ > 0.0
-            ? static_cast<double>(steps_in_rate_window_) / stepping_seconds_in_rate_window_
-            : 0.0;
-    steps_in_rate_window_ = 0;
-    frames_in_rate_window_ = 0;
-    stepping_seconds_in_rate_window_ = 0.0;
-    rate_window_start_ = clock::now();
-  }
 }
 
 }  // namespace clothlab

@@ -3,6 +3,11 @@
 // number of steps the time mode asks for, then draws it. The four parts of question 3 stay
 // apart: initialisation (load_model), force computation (compute_force), numerical integration
 // (apply_force), display (the renderer, which only reads the state).
+//
+// The class's code is in three files: scene.cpp (load_model, draw_scene: the stepping and the
+// drawing), scene_cloth_path.cpp (the cloth's path, CPU or GPU, and the switch between them) and
+// scene_mouse.cpp (the mouse: picking, the grab's drag, the sphere's move). What it measures of
+// the run (rates, energies, the first tear) is run_statistics.hpp's.
 #pragma once
 
 #include <array>
@@ -13,7 +18,6 @@
 #include <string>
 #include <vector>
 
-#include "app/options.hpp"
 #include "core/coupled_springs.hpp"
 #include "core/energy.hpp"
 #include "core/single_spring.hpp"
@@ -24,6 +28,7 @@
 #include "gl/renderer.hpp"
 #include "window/frame_anatomy.hpp"
 #include "window/picking.hpp"
+#include "window/run_statistics.hpp"
 #include "window/spring_motion.hpp"
 #include "window/stability_map.hpp"
 #include "window/state_images.hpp"
@@ -68,8 +73,10 @@ class scene {
   cloth_paths paths_;
 
  public:
-  // The three stages with the parameters of the command line; nothing is loaded yet.
-  explicit scene(const options& start);
+  // The three stages with their parameters (the command line's), `stage` shown first; nothing is
+  // loaded yet.
+  scene(stage_kind stage, const single_spring_parameters& spring,
+        const coupled_springs_parameters& chain, const cloth_parameters& cloth);
   ~scene();  // needs the GL context still current
   scene(const scene&) = delete;
   scene& operator=(const scene&) = delete;
@@ -115,13 +122,15 @@ class scene {
   // Question 4: the energies after the last frame's steps, and each of them (J) after each of
   // the last frames since the stage was selected or reset, oldest first: kinetic, gravity,
   // spring, total.
-  const energy_breakdown& energy() const { return energy_; }
-  const std::array<std::vector<float>, 4>& energy_history() const { return energy_history_; }
-  const std::vector<float>& energy_times() const { return energy_times_; }  // t of each, s
+  const energy_breakdown& energy() const { return energy_history_.latest(); }
+  const std::array<std::vector<float>, 4>& energy_history() const {
+    return energy_history_.values();
+  }
+  const std::vector<float>& energy_times() const { return energy_history_.times(); }  // t, s
   // Question 2: the single spring's extension against the exact solution of the 1D model.
   const spring_motion& motion() const { return spring_motion_; }
-  double steps_per_second() const { return measured_steps_per_second_; }
-  double frames_per_second() const { return measured_frames_per_second_; }
+  double steps_per_second() const { return rates_.steps_per_second(); }
+  double frames_per_second() const { return rates_.frames_per_second(); }
   // Steps taken since the program started, every stage and path together (--frames reports it).
   long steps_taken() const { return steps_taken_; }
 
@@ -151,7 +160,7 @@ class scene {
   const std::string& backend_message() const { return backend_message_; }
   // Steps per second of the live path's stepping alone (not drawing nor the panel), measured
   // continuously over about half a second; for the GPU, between two glFinish.
-  double stepping_rate() const { return measured_stepping_rate_; }
+  double stepping_rate() const { return rates_.stepping_rate(); }
   // Question 12: times `steps` steps of every path on copies of the current cloth.
   void measure_backends(int steps);
   const backend_comparison& comparison() const { return comparison_; }
@@ -159,7 +168,7 @@ class scene {
   // again when the cloth stepped since the last call (needs the GL context).
   const state_images& state_textures();
   bool state_textures_from_gpu() const { return state_images_from_gpu_; }
-  // The mouse on the cloth and on the masses of stages 1 and 2 (issue 10; model.md, "drag").
+  // The mouse on the cloth and on the masses of stages 1 and 2 (model.md, "drag").
   // At a left press, grab_particle picks what is under the ray (picking.hpp): on the cloth the
   // particle, from its current positions (on the GPU path read back once, at the press); on
   // stages 1 and 2 the mass whose drawn sphere the ray crosses. A pinned particle or the fixed
@@ -224,10 +233,6 @@ class scene {
   void draw(int left, int width, int height);
   void draw_stage(int left, int width, int height);
   void check_in_view();
-  void measure_rates(int steps, double stepping_seconds);
-  std::size_t cloth_spring_count() const;
-  void report_first_tear();
-  void restart_rate_window();
   bool cloth_on_gpu() const { return stage_ == stage_kind::cloth && on_gpu(paths_.backend()); }
   bool load_gpu_path(cloth_backend target, std::string& why);
   void read_gpu_state();  // the current GPU path's state into cloth_stage
@@ -254,30 +259,21 @@ class scene {
   double start_hold_seconds_left_ = 0.0;
   int start_hold_frames_left_ = 0;
 
-  energy_breakdown energy_;
-  std::array<std::vector<float>, 4> energy_history_;  // kinetic, gravity, spring, total
-  std::vector<float> energy_times_;                   // t of each entry, s
+  energy_record energy_history_;  // of the stage shown, since it was selected or reset
   spring_motion spring_motion_;
 
   renderer renderer_;
 
-  // Steps and frames counted over about half a second of wall-clock time.
   using clock = std::chrono::steady_clock;
-  clock::time_point rate_window_start_ = clock::now();
-  long steps_in_rate_window_ = 0;
-  long frames_in_rate_window_ = 0;
-  double measured_steps_per_second_ = 0.0;
-  double measured_frames_per_second_ = 0.0;
-  double stepping_seconds_in_rate_window_ = 0.0;
-  double measured_stepping_rate_ = 0.0;
+  rate_meter rates_;
   long steps_taken_ = 0;
-  bool tear_reported_ = false;  // the cloth's first tear was said (until it is whole again)
+  tear_report tear_report_;
   bool fell_out_of_view_ = false;
   frame_anatomy anatomy_;                 // this frame's, being measured
   frame_anatomy last_anatomy_;            // the last whole frame's
   std::array<double, 3> load_seconds_{};  // the last load_model of each stage, s
 
-  // The GPU paths (questions 11 and 12, issue 9): while one holds the cloth's state (paths_),
+  // The GPU paths (questions 11 and 12): while one holds the cloth's state (paths_),
   // cloth_stage holds a copy read back only when the panel needs it (panel_needs_state), at a
   // switch, a measurement, a press of the mouse or a divergence. The divergence check runs on
   // the GPU (cloth_paths::run).

@@ -14,7 +14,7 @@ class stability_map {
  public:
   // K from K/10 to 10 K (factors of 10^1/4) around the current K; dt across, centred on the
   // theoretical step-size limit of the current (dt, K) so that the map shows both sides of it
-  // (at stage 1's defaults dt = 0.01 s is 45 times below the limit, and a map around dt was all
+  // (at stage 1's defaults dt = 0.01 s is 45 times below the limit: a map around dt would be all
   // green). The cloth's K is K_struct, K_shear and K_bend scaled together.
   static constexpr int columns = 13;
   static constexpr int rows = 9;

@@ -61,15 +61,29 @@ void publish_status(const scene& the_scene) {
                   the_scene.frames_per_second(), the_scene.status().diverged ? 1 : 0);
 }
 
-// emscripten 3.1.6's GLFW hands on the browser's wheel deltas as they are: pixels (about 100 a
-// notch in Chromium; lines, 3 a notch, in Firefox), positive downwards. GLFW's are notches,
-// positive away from the user, as the panel (Dear ImGui) and the zoom expect. Installed after
-// Dear ImGui's callback, it converts, then calls it (which calls the window's own).
+// The browser's wheel deltas are pixels (about 100 a notch in Chromium; lines, 3 a notch, in
+// Firefox), positive rightwards and downwards. GLFW's are notches, positive leftwards and away
+// from the user, as the panel (Dear ImGui) and the zoom expect. emscripten's GLFW hands on the
+// horizontal delta as the browser gives it, and the vertical one too before emscripten 3.1.8
+// (Debian 12 has 3.1.6); from 3.1.8 on (Debian 13 has 3.1.69) the vertical one comes already
+// in notches, at least one per event. Installed after Dear ImGui's callback, this converts
+// what is still the browser's, then calls it (which calls the window's own).
+#if !defined(__EMSCRIPTEN_major__) || !defined(__EMSCRIPTEN_minor__) || \
+    !defined(__EMSCRIPTEN_tiny__)
+#error "emscripten's version is unknown (emscripten.h defines __EMSCRIPTEN_major__ and the others)"
+#endif
+constexpr bool glfw_vertical_wheel_in_notches =
+    __EMSCRIPTEN_major__ > 3 ||
+    (__EMSCRIPTEN_major__ == 3 &&
+     (__EMSCRIPTEN_minor__ > 1 || (__EMSCRIPTEN_minor__ == 1 && __EMSCRIPTEN_tiny__ >= 8)));
+
+double browser_delta_to_notches(double delta) {
+  return -(std::abs(delta) >= 10.0 ? delta / 100.0 : delta / 3.0);
+}
+
 void on_browser_wheel(GLFWwindow* window, double x, double y) {
-  const auto notches = [](double delta) {
-    return -(std::abs(delta) >= 10.0 ? delta / 100.0 : delta / 3.0);
-  };
-  ImGui_ImplGlfw_ScrollCallback(window, notches(x), notches(y));
+  ImGui_ImplGlfw_ScrollCallback(window, browser_delta_to_notches(x),
+                                glfw_vertical_wheel_in_notches ? y : browser_delta_to_notches(y));
 }
 
 void frame(void* /*unused*/) {

@@ -274,7 +274,9 @@ std::unique_ptr<window_app> window_app::create(glfw_context& context, const opti
 }
 
 window_app::window_app(glfw_context& context, const options& start)
-    : context_(context), scene_(start) {}
+    : context_(context), scene_(start.stage, start.spring, start.coupled, start.cloth) {
+  scene_.spring_one_dimensional_start = start.spring_1d_start;
+}
 
 window_app::~window_app() = default;
 

@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
     if (measured_run.frame_done(glfwGetTime(), the_scene.steps_taken()))
       break;
   }
-  // Issue 9: the GPU paths' state comes back only for what the panel shows (scene.hpp).
+  // The GPU paths' state comes back only for what the panel shows (scene.hpp).
   std::printf("clothlab-window: the GPU state was read back %ld times over %.1f s\n",
               the_scene.readbacks(), glfwGetTime());
   print_spring_plot(the_scene.motion());

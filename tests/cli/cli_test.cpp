@@ -2,6 +2,7 @@
 // option, the CSV format (checked against a hand computation), bad usage (exit 2), divergence
 // (exit 3), unwritable files (exit 1) and the OBJ. Each run happens in its own empty directory.
 #include <fcntl.h>
+#include <grp.h>
 #include <gtest/gtest.h>
 #include <poll.h>
 #if defined(__APPLE__)
@@ -20,6 +21,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -1105,6 +1107,7 @@ TEST_F(cli, ProgressIsShownOnATerminalOnly) {
   EXPECT_TRUE(plain.err.empty()) << plain.err;
 }
 
+// BEGIN TEACHER (the student copy has no compute path)
 namespace {
 
 // The compute-shader path runs and writes its outputs (not in the student copy, whose step
@@ -1119,6 +1122,7 @@ TEST_F(SolutionCli, GpuComputeRunsAndWritesItsOutputs) {
 }
 
 }  // namespace
+// END TEACHER
 
 // Issue 22: the edges of every input.
 namespace {
@@ -1271,11 +1275,21 @@ pid_t spawn(const spawn_settings& how) {
       sigaddset(&set, SIGINT);
       sigprocmask(SIG_BLOCK, &set, nullptr);
     }
-    if (how.user != 0 && (setgid(how.user) != 0 || setuid(how.user) != 0))
-      _exit(126);
-    alarm(60);
+    // A failure here says why on the child's standard error (the test prints it).
+    const auto fail = [](const char* what, int status) {
+      const std::string line = std::string("spawn: ") + what + ": " + std::strerror(errno) + "\n";
+      (void)!write(2, line.data(), line.size());
+      _exit(status);
+    };
+    if (how.user != 0 && (setgroups(0, nullptr) != 0 || setgid(how.user) != 0))
+      fail("cannot take the group of the user", 126);
+    if (how.user != 0 && setuid(how.user) != 0)
+      fail("cannot become the user", 126);
+    // A bound against a hang, far above a run's time on a loaded machine (the test waits for
+    // the process's end, not for a time).
+    alarm(240);
     execv(argv[0], argv.data());
-    _exit(127);
+    fail(argv[0], 127);
   }
   close(exec_done[1]);
   char byte;
@@ -1475,6 +1489,37 @@ TEST_F(cli, FullDeviceMessagesSayWhy) {
   }
 }
 
+// A GLSL error is reported at its file and line, in the shader the loader compiles and in the
+// file it includes (gpu_cloth_common.glsl, whose lines the compiler numbers in their own
+// source string): "shaders/gpu_cloth_common.glsl:89(12): error: ...", exit 1.
+TEST_F(cli, ShaderErrorsNameTheFileAndLineThatHoldThem) {
+  const fs::path source =
+      fs::path(clothlab_test::render_reference_directory).parent_path().parent_path().parent_path();
+  for (const char* broken : {"gpu_cloth_common.glsl", "gpu_step.frag"}) {
+    const fs::path data = root() / "data";
+    fs::remove_all(data);
+    fs::create_directories(data);
+    fs::copy(source / "shaders", data / "shaders");
+    fs::copy(source / "assets", data / "assets");
+    const std::string text = read_file(data / "shaders" / broken);
+    const long line = std::count(text.begin(), text.end(), '\n') + 1;
+    std::ofstream(data / "shaders" / broken, std::ios::app)
+        << "float broken_line() { return undeclared_name; }\n";
+    spawn_settings how{clothlab_command({"--headless", "--gl", "osmesa", "--backend", "gpu", "--N",
+                                         "4", "--steps", "1"}),
+                       work()};
+    how.environment = {"CLOTHLAB_DATA_DIR=" + data.string()};
+    const ended result = wait_for(spawn(how), work());
+    EXPECT_TRUE(result.exited && result.code == 1) << broken << ": " << result.err;
+    const std::string place = std::string("shaders/") + broken + ":" + std::to_string(line);
+    const std::string other_form = std::string("shaders/") + broken + "(" + std::to_string(line);
+    EXPECT_TRUE(result.err.find(place) != std::string::npos ||
+                result.err.find(other_form) != std::string::npos)
+        << "expected " << place << " in: " << result.err;
+    EXPECT_NE(result.err.find("undeclared_name"), std::string::npos) << result.err;
+  }
+}
+
 // A data file missing (CLOTHLAB_DATA_DIR pointing at a copy without it) fails before step 1,
 // naming the file, with the files of a previous run left as they were (a missing GPU shader
 // used to replace an existing CSV with a header-only one; a missing drawing shader or texture
@@ -1511,46 +1556,89 @@ TEST_F(cli, MissingDataFileFailsBeforeAnyOutput) {
   }
 }
 
+// A folder where nobody can reach: the first of the temporary folder, /tmp and /var/tmp whose
+// every parent lets others through (a private TMPDIR, 0700, does not: nobody could not even
+// start the program there). Empty when none does.
+fs::path folder_others_can_reach() {
+  for (const fs::path& candidate :
+       {fs::temp_directory_path(), fs::path("/tmp"), fs::path("/var/tmp")}) {
+    std::error_code ec;
+    bool reachable = fs::is_directory(candidate, ec);
+    for (fs::path p = candidate; reachable && !p.empty(); p = p.parent_path()) {
+      reachable = (fs::status(p, ec).permissions() & fs::perms::others_exec) != fs::perms::none;
+      if (p == p.root_path())
+        break;
+    }
+    if (reachable)
+      return candidate;
+  }
+  return {};
+}
+
 // A folder that takes no new file: an existing writable output is written in place, whatever
 // the output (the CSV was, the OBJ and the PNG were refused with "Permission denied"). Run as
-// an unprivileged user (root writes into any folder).
+// an unprivileged user (root writes into any folder), nobody, on a copy of the program and of
+// its data files in a folder nobody can reach (the build tree may lie in a home or a folder
+// made by mkdtemp, 0700; so may the temporary folder).
 TEST_F(cli, ReadOnlyFolderWritesEveryExistingWritableOutput) {
   if (geteuid() != 0)
     GTEST_SKIP() << "needs root, to run clothlab as nobody in a folder it cannot write";
-  for (const char* name : {"s.csv", "e.csv", "c.obj", "c.png"}) {
-    std::ofstream(work() / name) << "old\n";
-    fs::permissions(work() / name, fs::perms(0666));
-  }
-  // nobody runs a copy of the program and of its data files in this test's folder: the build
-  // tree may lie where nobody cannot reach it (a home, or a folder made by mkdtemp, is 0700).
+  const fs::path base = folder_others_can_reach();
+  if (base.empty())
+    GTEST_SKIP() << "no temporary folder that others can reach (TMPDIR, /tmp, /var/tmp)";
+  std::string pattern = (base / "clothlab-cli-nobody-XXXXXX").string();
+  ASSERT_NE(mkdtemp(pattern.data()), nullptr) << std::strerror(errno);
+  const fs::path tree = pattern;
+  struct removed_at_the_end {
+    fs::path path;
+    ~removed_at_the_end() {
+      std::error_code ignored;
+      fs::permissions(path / "run" / "work", fs::perms(0755), ignored);
+      fs::remove_all(path, ignored);
+    }
+  } cleanup{tree};
   const fs::path source =
       fs::path(clothlab_test::render_reference_directory).parent_path().parent_path().parent_path();
-  const fs::path program = root() / "bin" / "clothlab";
+  const fs::path program = tree / "bin" / "clothlab";
+  const fs::path data = tree / "data";
+  const fs::path folder = tree / "run" / "work";  // stdout.txt and stderr.txt go to run/
   fs::create_directories(program.parent_path());
-  fs::create_directories(root() / "data");
-  fs::copy_file(clothlab_test::executable_path, program, fs::copy_options::overwrite_existing);
-  fs::copy(source / "shaders", root() / "data" / "shaders", fs::copy_options::recursive);
-  fs::copy(source / "assets", root() / "data" / "assets", fs::copy_options::recursive);
-  for (const fs::path& tree : {root() / "bin", root() / "data"}) {
-    fs::permissions(tree, fs::perms(0755), fs::perm_options::add);
-    for (const fs::path& path : fs::recursive_directory_iterator(tree))
-      fs::permissions(path, fs::perms(0755), fs::perm_options::add);
+  fs::create_directories(folder);
+  fs::create_directories(data);
+  fs::copy_file(clothlab_test::executable_path, program);
+  fs::copy(source / "shaders", data / "shaders", fs::copy_options::recursive);
+  fs::copy(source / "assets", data / "assets", fs::copy_options::recursive);
+  fs::permissions(tree, fs::perms(0755), fs::perm_options::add);
+  for (const fs::path& path : fs::recursive_directory_iterator(tree))
+    fs::permissions(path, fs::perms(0755), fs::perm_options::add);
+  fs::permissions(folder.parent_path(), fs::perms(0777));
+  // First, that nobody can run the program here at all (a user namespace without the user
+  // nobody, or a file system mounted noexec, cannot): else the test has nothing to say.
+  spawn_settings probe{{program.string(), "--version"}, folder};
+  probe.user = 65534;  // nobody
+  const ended probed = wait_for(spawn(probe), folder);
+  if (!probed.exited || probed.code != 0)
+    GTEST_SKIP() << "nobody cannot run " << program << " here: " << probed.err;
+  for (const char* name : {"s.csv", "e.csv", "c.obj", "c.png"}) {
+    std::ofstream(folder / name) << "old\n";
+    fs::permissions(folder / name, fs::perms(0666));
   }
-  fs::permissions(work(), fs::perms(0555));
-  fs::permissions(root(), fs::perms(0777));
+  fs::permissions(folder, fs::perms(0555));
   spawn_settings how{{program.string(), "--headless", "--gl",  own_context, "--N",          "4",
                       "--steps",        "2",          "--csv", "s.csv",     "--energy-csv", "e.csv",
                       "--obj",          "c.obj",      "--png", "c.png",     "--width",      "16",
                       "--height",       "16"},
-                     work()};
-  how.environment = {"CLOTHLAB_DATA_DIR=" + (root() / "data").string()};
-  how.user = 65534;  // nobody
-  const ended result = wait_for(spawn(how), work());
-  fs::permissions(work(), fs::perms(0755));
-  EXPECT_TRUE(result.exited && result.code == 0) << result.err;
+                     folder};
+  // (TMPDIR, where the PNG's writer writes first, one that nobody can use)
+  how.environment = {"CLOTHLAB_DATA_DIR=" + data.string(), "TMPDIR=" + base.string()};
+  how.user = 65534;
+  const ended result = wait_for(spawn(how), folder);
+  fs::permissions(folder, fs::perms(0755));
+  EXPECT_TRUE(result.exited && result.code == 0)
+      << (result.exited ? "exit " : "signal ") << result.code << ": " << result.err;
   for (const char* name : {"s.csv", "e.csv", "c.obj", "c.png"})
-    EXPECT_NE(read_file(work() / name), "old\n") << name;
-  EXPECT_EQ(read_file(work() / "c.png").substr(0, 8), "\x89PNG\r\n\x1a\n");
+    EXPECT_NE(read_file(folder / name), "old\n") << name;
+  EXPECT_EQ(read_file(folder / "c.png").substr(0, 8), "\x89PNG\r\n\x1a\n");
 }
 
 // A sweep's cells are counted with their set-up (building a cloth of N^2 particles and

@@ -9,7 +9,11 @@ N = 20
 ARGS = ['--headless', '--N', str(N), '--tear-strain', '0.3', '--drag', '19,19:2,2,2', '--steps', '600']
 workdir = tempfile.mkdtemp(prefix='clothlab-torn-')
 faces = {}
-for backend in ('cpu', 'gpu', 'gpu-compute'):
+# BEGIN TEACHER
+BACKENDS = ('cpu', 'gpu', 'gpu-compute')
+# END TEACHER
+# COPY| BACKENDS = ('cpu', 'gpu')  # the copy has no compute path
+for backend in BACKENDS:
     path = os.path.join(workdir, backend + '.obj')
     run = subprocess.run([B] + ARGS + ['--backend', backend, '--obj', path],
                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)

@@ -16,7 +16,7 @@ The class is made from the solution and the student copy (scripts/make-student-v
   judy   a .tar.gz with no student file in it
 and each grade, grades.csv, results.json (Gradescope's fields), junit.xml and report.html are
 checked; then the Gradescope bundle's run_autograder grades carol's files, uploaded loose, in a
-folder laid out like Gradescope's, and the GitHub workflow's YAML is checked. One shared build (the grader's
+folder laid out like Gradescope's. One shared build (the grader's
 own), each submission an incremental rebuild of its own files.
 """
 import csv
@@ -233,7 +233,8 @@ def main():
         maker = Maker(root, work)
         (work / "class").mkdir()
         subs = make_class(maker, work / "class", outside)
-        points = json.loads((root / "grading/points.json").read_text())["questions"]
+        lab = json.loads((root / "grading/lab.json").read_text())
+        points = {q["id"]: q["points"] for q in lab["questions"]}
         questions = list(points)
         out = work / "out"
         graded = run([root / "scripts/grade", *subs, "--out", out, "--work", work / "kit",
@@ -371,33 +372,7 @@ def main():
                       "run_autograder's score of carol's files, uploaded loose, differs from "
                       "scripts/grade's of her copy")
 
-        # The GitHub workflow.
-        workflow = root / ".github/workflows/grade.yml"
-        if check(workflow.exists(), ".github/workflows/grade.yml is missing"):
-            text = workflow.read_text()
-            commands = "\n".join(l for l in text.splitlines() if not l.strip().startswith("#"))
-            try:
-                import yaml  # python3-yaml, where installed
-                for copy in (c for c in (root, maker.stubs)
-                             if (c / ".github/workflows/grade.yml").exists()):
-                    document = yaml.safe_load((copy / ".github/workflows/grade.yml").read_text())
-                    steps = document["jobs"]["grade"]["steps"]
-                    # (YAML 1.1 reads the key `on` as True.)
-                    check(document.get(True, document.get("on")) is not None and steps,
-                          f"grade.yml of {copy.name}: no trigger or no steps")
-            except ImportError:
-                print("(python3-yaml is not installed: grade.yml's syntax is not checked)")
-            for q in questions:
-                match = re.search(rf"ctest --test-dir build -L '\^{q.lower()}\$'.*\n\s*"
-                                  rf"timeout: \d+\n\s*max-score: (\d+)", text)
-                check(match and float(match.group(1)) == full[q],
-                      f"grade.yml: no step that runs ctest -L '^{q.lower()}$' with max-score "
-                      f"{full[q]:g} (grading/points.json)")
-            for path in re.findall(r"(scripts/[\w.-]+|\./[\w.-]+\.sh)", commands):
-                check((maker.stubs / path).exists(), f"grade.yml runs {path}, which the student "
-                                                     "copy lacks")
-            check((maker.stubs / ".github/workflows/grade.yml").exists(),
-                  "the student copy has no .github/workflows/grade.yml")
+        # The GitHub workflow: tests/grade/check_classroom.py (grade.classroom_workflow).
     finally:
         print(f"check_grade: {time.monotonic() - started:.0f} s")
         if not problems:

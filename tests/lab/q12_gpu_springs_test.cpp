@@ -12,13 +12,16 @@
 #include <string>
 #include <vector>
 
-#include "core/spring_mesh.hpp"
-#include "gl/gpu_cloth.hpp"
 #include "gl_fixture.hpp"
 #include "lab_check.hpp"
+#include "student.hpp"
 
 namespace clothlab {
 namespace {
+
+// The student's classes and functions, run by the lab runner (student.hpp).
+using student::spring_family;
+using student::spring_mesh;
 
 using Q12GpuSprings = lab::OffscreenGl;
 
@@ -275,14 +278,13 @@ TEST_F(Q12GpuSprings, EveryTexelFeelsOnlyTheSpringsInsideTheGrid) {
   spring_mesh cloth(p);
   deform(cloth, 0.1);
   const auto force = gpu_forces(cloth, p);
-  for (int kv = 0; kv < 4; ++kv)
-    for (int ku = 0; ku < 4; ++ku)
-      LAB_EXPECT_VEC(at(force, cloth, ku, kv), expected_force(cloth, ku, kv, 1.0, 40.0, 30.0, 20.0),
-                     force_tolerance,
-                     "Q12: " + place(ku, kv, 4) +
-                         " of a deformed 4 x 4 cloth should feel the springs to its neighbours "
-                         "inside the grid, and none to texels outside it (ku or kv < 0 or > N-1 "
-                         "= 3: skip them, joined(k, i) says which)");
+  LAB_EXPECT_EVERY_VEC(
+      k, 4 * 4, at(force, cloth, int(k % 4), int(k / 4)),
+      expected_force(cloth, int(k % 4), int(k / 4), 1.0, 40.0, 30.0, 20.0), force_tolerance,
+      "Q12: " + place(int(k % 4), int(k / 4), 4) +
+          " of a deformed 4 x 4 cloth should feel the springs to its neighbours "
+          "inside the grid, and none to texels outside it (int(k % 4) or int(k / 4) < 0 or > N-1 "
+          "= 3: skip them, joined(k, i) says which)");
 }
 
 // Spring forces come in opposite pairs along the line of their two ends: their sum and their
@@ -301,8 +303,8 @@ TEST_F(Q12GpuSprings, SpringForcesSumToZeroAndExertNoTorque) {
       largest = glm::max(largest, glm::abs(f));
     }
   }
-  EXPECT_GT(largest.x + largest.y + largest.z, 1.0)
-      << "Q12: a deformed cloth with stiff springs should feel spring forces on the GPU";
+  LAB_EXPECT_TRUE(largest.x + largest.y + largest.z > 1.0,
+                  "Q12: a deformed cloth with stiff springs should feel spring forces on the GPU");
   LAB_EXPECT_VEC(sum, glm::dvec3(0.0), 25 * force_tolerance,
                  "Q12: the spring forces should sum to zero (the two ends of a spring feel "
                  "opposite forces): does every texel add each of its springs once, with "
@@ -317,12 +319,11 @@ TEST_F(Q12GpuSprings, AClothAtRestFeelsNoSpringForce) {
   const cloth_parameters p = still_cloth(5, 4.0, 500.0, 200.0, 50.0);
   const spring_mesh cloth(p);
   const auto force = gpu_forces(cloth, p);
-  for (int kv = 0; kv < 5; ++kv)
-    for (int ku = 0; ku < 5; ++ku)
-      LAB_EXPECT_VEC(at(force, cloth, ku, kv), glm::dvec3(0.0), force_tolerance,
-                     "Q12: on the flat cloth at rest every spring has its rest length (h, h sqrt 2 "
-                     "or 2h for its family): " +
-                         place(ku, kv, 5) + " should feel no spring force");
+  LAB_EXPECT_EVERY_VEC(
+      k, 5 * 5, at(force, cloth, int(k % 5), int(k / 5)), glm::dvec3(0.0), force_tolerance,
+      "Q12: on the flat cloth at rest every spring has its rest length (h, h sqrt 2 "
+      "or 2h for its family): " +
+          place(int(k % 5), int(k / 5), 5) + " should feel no spring force");
 }
 
 }  // namespace

@@ -10,13 +10,16 @@
 #include <string>
 #include <vector>
 
-#include "core/spring_mesh.hpp"
-#include "gl/gpu_cloth.hpp"
 #include "gl_fixture.hpp"
 #include "lab_check.hpp"
+#include "student.hpp"
 
 namespace clothlab {
 namespace {
+
+// The student's classes and functions, run by the lab runner (student.hpp).
+using student::gpu_cloth;
+using student::spring_mesh;
 
 cloth_parameters windy_cloth(double strength, const glm::dvec3& direction) {
   cloth_parameters p;
@@ -90,12 +93,12 @@ constexpr double gpu_tolerance = 1e-4;  // N, single precision
 TEST(Q13Wind, AFlatClothFeelsTheWindAlongItsNormal) {
   spring_mesh cloth(windy_cloth(3.0, {0, 3, 4}));
   cloth.compute_force();
-  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
-    LAB_EXPECT_VEC(cloth.particles().get_force(k), glm::dvec3(0, 0, 2.4), 1e-12,
-                   "Q13: on the flat cloth (n = (0, 0, 1)) a wind of strength K_w = 3 blowing "
-                   "along (0, 3, 4) (u_w = (0, 0.6, 0.8) once normalised) pushes every vertex "
-                   "with K_w <n, u_w> n = (0, 0, 2.4); vertex " +
-                       std::to_string(k));
+  LAB_EXPECT_EVERY_VEC(k, cloth.particles().size(), cloth.particles().get_force(k),
+                       glm::dvec3(0, 0, 2.4), 1e-12,
+                       "Q13: on the flat cloth (n = (0, 0, 1)) a wind of strength K_w = 3 blowing "
+                       "along (0, 3, 4) (u_w = (0, 0.6, 0.8) once normalised) pushes every vertex "
+                       "with K_w <n, u_w> n = (0, 0, 2.4); vertex " +
+                           std::to_string(k));
 }
 
 // The cloth turned by 30 degrees about x: s(ku, kv) = (x, y cos 30, y sin 30), whose normal is
@@ -107,11 +110,11 @@ TEST(Q13Wind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
   tilt(cloth);
   cloth.compute_force();
   const glm::dvec3 n = {0, -s, c};
-  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
-    LAB_EXPECT_VEC(cloth.particles().get_force(k), 5.0 * -s * n, 1e-9,
-                   "Q13: a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
-                   "strength 5 along y should feel K_w <n, u_w> n = (0, 1.25, -2.165); vertex " +
-                       std::to_string(k));
+  LAB_EXPECT_EVERY_VEC(
+      k, cloth.particles().size(), cloth.particles().get_force(k), 5.0 * -s * n, 1e-9,
+      "Q13: a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
+      "strength 5 along y should feel K_w <n, u_w> n = (0, 1.25, -2.165); vertex " +
+          std::to_string(k));
 }
 
 // Flat cloth (n = (0, 0, 1)), wind of strength 4 blowing down along (0, 0, -2), against the
@@ -119,12 +122,12 @@ TEST(Q13Wind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
 TEST(Q13Wind, AWindAgainstTheNormalPushesTheOtherWay) {
   spring_mesh cloth(windy_cloth(4.0, {0, 0, -2}));
   cloth.compute_force();
-  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
-    LAB_EXPECT_VEC(cloth.particles().get_force(k), glm::dvec3(0, 0, -4), 1e-12,
-                   "Q13: a wind blowing down (u_w = (0, 0, -1)) on the flat cloth (n = (0, 0, 1)) "
-                   "has <n, u_w> = -1 and pushes every vertex DOWN with K_w <n, u_w> n = "
-                   "(0, 0, -4) (keep the sign of <n, u_w>); " +
-                       vertex(k, 4));
+  LAB_EXPECT_EVERY_VEC(
+      k, cloth.particles().size(), cloth.particles().get_force(k), glm::dvec3(0, 0, -4), 1e-12,
+      "Q13: a wind blowing down (u_w = (0, 0, -1)) on the flat cloth (n = (0, 0, 1)) "
+      "has <n, u_w> = -1 and pushes every vertex DOWN with K_w <n, u_w> n = "
+      "(0, 0, -4) (keep the sign of <n, u_w>); " +
+          vertex(k, 4));
 }
 
 // The curved cloth (see curve): every vertex feels K_w <n, u_w> n with its own normal.
@@ -134,21 +137,20 @@ TEST(Q13Wind, EveryVertexOfACurvedClothFeelsTheWindOnItsOwnNormal) {
   curve(cloth);
   const std::vector<glm::dvec3> expected = expected_wind(cloth, 3.0, direction);
   cloth.compute_force();
-  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
-    LAB_EXPECT_VEC(cloth.particles().get_force(k), expected[k], 1e-9,
-                   "Q13: on a curved cloth each vertex has its own normal n(ku, kv); a wind of "
-                   "strength 3 along (1, 2, 0.5) pushes it with K_w <n, u_w> n, u_w the unit "
-                   "direction, along n, towards the side the wind blows (<n, u_w> may be "
-                   "negative); " +
-                       vertex(k, 4));
+  LAB_EXPECT_EVERY_VEC(k, cloth.particles().size(), cloth.particles().get_force(k), expected[k],
+                       1e-9,
+                       "Q13: on a curved cloth each vertex has its own normal n(ku, kv); a wind of "
+                       "strength 3 along (1, 2, 0.5) pushes it with K_w <n, u_w> n, u_w the unit "
+                       "direction, along n, towards the side the wind blows (<n, u_w> may be "
+                       "negative); " +
+                           vertex(k, 4));
 }
 
 TEST(Q13Wind, NoWindNoForce) {
   spring_mesh cloth(windy_cloth(0.0, {0, 1, 0}));
   cloth.compute_force();
-  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
-    LAB_EXPECT_VEC(cloth.particles().get_force(k), glm::dvec3(0.0), 0.0,
-                   "Q13: with K_w = 0 there is no wind force");
+  LAB_EXPECT_EVERY_VEC(k, cloth.particles().size(), cloth.particles().get_force(k), glm::dvec3(0.0),
+                       0.0, "Q13: with K_w = 0 there is no wind force");
 }
 
 using Q13GpuWind = lab::OffscreenGl;
@@ -160,15 +162,16 @@ TEST_F(Q13GpuWind, TheGpuStepAddsTheWindAlongTheNormal) {
   spring_mesh cloth(p);
   gpu_cloth gpu;
   std::string error;
-  ASSERT_TRUE(gpu.load(cloth, error)) << error;
+  const bool loaded = gpu.load(cloth, error);
+  LAB_ASSERT_TRUE(loaded, error);
   gpu.step(p);
   gpu.read_state(cloth);
-  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
-    LAB_EXPECT_VEC(cloth.particles().get_velocity(k), glm::dvec3(0, 0, 0.012), 1e-7,
-                   "Q13 (GPU): the velocity shader should add K_w <n, u_w> n to the force: after "
-                   "one step of 0.01 s a 2 kg vertex of the flat cloth in a wind of strength 3 "
-                   "along (0, 3, 4) moves at (0, 0, 0.012); texel " +
-                       std::to_string(k));
+  LAB_EXPECT_EVERY_VEC(
+      k, cloth.particles().size(), cloth.particles().get_velocity(k), glm::dvec3(0, 0, 0.012), 1e-7,
+      "Q13 (GPU): the velocity shader should add K_w <n, u_w> n to the force: after "
+      "one step of 0.01 s a 2 kg vertex of the flat cloth in a wind of strength 3 "
+      "along (0, 3, 4) moves at (0, 0, 0.012); texel " +
+          std::to_string(k));
 }
 
 // The tilted cloth of the CPU test on the GPU: n = (0, -0.5, 0.866), wind of strength 5 along y,
@@ -179,12 +182,12 @@ TEST_F(Q13GpuWind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
   tilt(cloth);
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
   const glm::dvec3 n = {0, -0.5, std::cos(M_PI / 6)};
-  for (std::size_t k = 0; k < force.size(); ++k)
-    LAB_EXPECT_VEC(force[k], 5.0 * -0.5 * n, gpu_tolerance,
-                   "Q13 (GPU): a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
-                   "strength 5 along y has <n, u_w> = -0.5 (negative: keep its sign) and should "
-                   "feel K_w <n, u_w> n = (0, 1.25, -2.165), along n, not along the wind; " +
-                       vertex(k, 4));
+  LAB_EXPECT_EVERY_VEC(
+      k, force.size(), force[k], 5.0 * -0.5 * n, gpu_tolerance,
+      "Q13 (GPU): a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
+      "strength 5 along y has <n, u_w> = -0.5 (negative: keep its sign) and should "
+      "feel K_w <n, u_w> n = (0, 1.25, -2.165), along n, not along the wind; " +
+          vertex(k, 4));
 }
 
 // The flat cloth on the GPU in a wind blowing down: F_w = (0, 0, -4).
@@ -192,12 +195,11 @@ TEST_F(Q13GpuWind, AWindAgainstTheNormalPushesTheOtherWay) {
   const cloth_parameters p = windy_cloth(4.0, {0, 0, -2});
   const spring_mesh cloth(p);
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
-  for (std::size_t k = 0; k < force.size(); ++k)
-    LAB_EXPECT_VEC(force[k], glm::dvec3(0, 0, -4), gpu_tolerance,
-                   "Q13 (GPU): a wind blowing down (u_w = (0, 0, -1)) on the flat cloth "
-                   "(n = (0, 0, 1)) has <n, u_w> = -1 and pushes every texel DOWN with "
-                   "K_w <n, u_w> n = (0, 0, -4); " +
-                       vertex(k, 4));
+  LAB_EXPECT_EVERY_VEC(k, force.size(), force[k], glm::dvec3(0, 0, -4), gpu_tolerance,
+                       "Q13 (GPU): a wind blowing down (u_w = (0, 0, -1)) on the flat cloth "
+                       "(n = (0, 0, 1)) has <n, u_w> = -1 and pushes every texel DOWN with "
+                       "K_w <n, u_w> n = (0, 0, -4); " +
+                           vertex(k, 4));
 }
 
 // The curved cloth on the GPU: each texel's own normal, read from normal_texture at that texel.
@@ -208,12 +210,12 @@ TEST_F(Q13GpuWind, EveryTexelOfACurvedClothFeelsTheWindOnItsOwnNormal) {
   curve(cloth);
   const std::vector<glm::dvec3> expected = expected_wind(cloth, 3.0, direction);
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
-  for (std::size_t k = 0; k < force.size(); ++k)
-    LAB_EXPECT_VEC(force[k], expected[k], gpu_tolerance,
-                   "Q13 (GPU): on a curved cloth each texel has its own normal n, read from "
-                   "normal_texture at this texel k; a wind of strength 3 along (1, 2, 0.5) pushes "
-                   "it with K_w <n, u_w> n (<n, u_w> may be negative); " +
-                       vertex(k, 4));
+  LAB_EXPECT_EVERY_VEC(
+      k, force.size(), force[k], expected[k], gpu_tolerance,
+      "Q13 (GPU): on a curved cloth each texel has its own normal n, read from "
+      "normal_texture at this texel k; a wind of strength 3 along (1, 2, 0.5) pushes "
+      "it with K_w <n, u_w> n (<n, u_w> may be negative); " +
+          vertex(k, 4));
 }
 
 TEST_F(Q13GpuWind, NoWindNoForce) {
@@ -221,9 +223,8 @@ TEST_F(Q13GpuWind, NoWindNoForce) {
   spring_mesh cloth(p);
   curve(cloth);
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
-  for (std::size_t k = 0; k < force.size(); ++k)
-    LAB_EXPECT_VEC(force[k], glm::dvec3(0.0), 0.0,
-                   "Q13 (GPU): with K_w = 0 there is no wind force; " + vertex(k, 4));
+  LAB_EXPECT_EVERY_VEC(k, force.size(), force[k], glm::dvec3(0.0), 0.0,
+                       "Q13 (GPU): with K_w = 0 there is no wind force; " + vertex(k, 4));
 }
 
 }  // namespace

@@ -26,7 +26,13 @@ import tempfile
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
-QUESTIONS = ["q5", "q6", "q7", "q8", "q9", "q12", "q13"]  # in the lab's order (docs/lab.md)
+ROOT = Path(sys.argv[1]).resolve() if len(sys.argv) > 1 else Path(__file__).resolve().parents[2]
+sys.dont_write_bytecode = True
+sys.path.insert(0, str(ROOT / "scripts"))
+from clothlab_lab import manifest  # noqa: E402 (the lab's facts: grading/lab.json)
+
+LAB = manifest.load(ROOT / manifest.MANIFEST)
+QUESTIONS = [q.label for q in LAB.questions]  # in the lab's order (docs/lab.md)
 # The tests without a question label run in every state: by default those of the physics, the
 # GPU paths and the off-screen pictures (the command line, the window, the fuzzer and the EGL
 # twins of the off-screen tests run in the first state, every question a stub, above: a
@@ -43,11 +49,8 @@ def lab_states():
     states += [QUESTIONS[:n] for n in range(2, len(QUESTIONS))]
     states.append(["q6", "q8"])
     return states
-TEACHER_FILES = ["docs/answers.md", "docs/teaching.md", "scripts/make-student-version",
-                 "tests/student_copy", "tests/model", "shaders/gpu_compute_step.comp",
-                 "scripts/mutate-grader", "tests/mutation", "scripts/grade",
-                 "scripts/grade-benchmark", "docs/images/grade-report.png", "tests/grade",
-                 "grading"]
+# The teacher's files and folders, none of which may be in the copy.
+TEACHER_FILES = list(LAB.teacher_files) + [f.rstrip("/") for f in LAB.teacher_folders]
 problems = []
 
 

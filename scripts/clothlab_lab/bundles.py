@@ -1,0 +1,46 @@
+"""The Gradescope bundle: setup.sh, run_autograder and the grader's kit (the generated student
+copy, the stubs, the lab's manifest and this package), never the solution."""
+import re
+import shutil
+import tempfile
+import zipfile
+from pathlib import Path
+
+from . import grading
+from .manifest import ROOT
+
+# The bundle's two scripts, teacher-only files of their own: setup.sh (its @PACKAGES@ filled
+# in from scripts/setup.sh) and run_autograder.
+TEMPLATES = ROOT / "grading" / "gradescope"
+
+
+def debian_packages():
+    text = (ROOT / "scripts/setup.sh").read_text()
+    block = re.search(r"^packages=\((.*?)^\)", text, re.MULTILINE | re.DOTALL)
+    return " ".join(word for line in block.group(1).splitlines()
+                    for word in line.split("#")[0].split()) if block else ""
+
+
+def make_bundle(path):
+    with tempfile.TemporaryDirectory(prefix="clothlab-bundle-") as tmp:
+        kit = Path(tmp) / "clothlab-grade"
+        grading.generate_kit(kit)
+        shutil.copy2(ROOT / "scripts/grade", kit / "grade")
+        shutil.copytree(Path(__file__).resolve().parent, kit / "clothlab_lab",
+                        ignore=shutil.ignore_patterns("__pycache__"))
+        setup = (TEMPLATES / "setup.sh").read_text()
+        files = {"setup.sh": setup.replace("@PACKAGES@", debian_packages()),
+                 "run_autograder": (TEMPLATES / "run_autograder").read_text()}
+        with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as bundle:
+            for name, text in files.items():
+                info = zipfile.ZipInfo(name)
+                info.external_attr = 0o100755 << 16
+                bundle.writestr(info, text)
+            for file in sorted(kit.rglob("*")):
+                if file.is_file():
+                    info = zipfile.ZipInfo(file.relative_to(Path(tmp)).as_posix())
+                    info.external_attr = (0o100000 | (file.stat().st_mode & 0o777)) << 16
+                    info.compress_type = zipfile.ZIP_DEFLATED
+                    bundle.writestr(info, file.read_bytes())
+    print(f"Gradescope autograder written to {path}: upload it as the assignment's "
+          "autograder (setup.sh, run_autograder, clothlab-grade/)")

@@ -1,0 +1,273 @@
+"""What the class and each student read: the table of the lab's questions after a test run
+(scripts/lab-report, ./test.sh), and scripts/grade's results.json, junit.xml, grades.csv and
+report.html."""
+import csv
+import html
+import json
+import re
+import subprocess
+import time
+import xml.etree.ElementTree as ElementTree
+from collections import Counter
+
+
+# ------------------------------------------------------------------------------------------
+# The table of the questions after ./test.sh: from ctest's labels and its JUnit results.
+
+
+def labels_of_tests(build_dir):
+    """{test name: set of labels}, from ctest's own listing."""
+    listing = subprocess.run(["ctest", "--test-dir", build_dir, "--show-only=json-v1"],
+                             check=True, capture_output=True, text=True).stdout
+    labels = {}
+    for test in json.loads(listing).get("tests", []):
+        names = set()
+        for prop in test.get("properties", []):
+            if prop.get("name") == "LABELS":
+                names.update(prop.get("value", []))
+        labels[test["name"]] = names
+    return labels
+
+
+def results(path):
+    """{test name: 'passed' | 'failed' | 'not run'} for the tests of the run."""
+    outcome = {}
+    for case in ElementTree.parse(path).getroot().iter("testcase"):
+        status = case.get("status", "run")
+        if case.find("failure") is not None or case.find("error") is not None:
+            outcome[case.get("name")] = "failed"
+        elif status in ("notrun", "disabled") or case.find("skipped") is not None:
+            outcome[case.get("name")] = "not run"
+        else:
+            outcome[case.get("name")] = "passed"
+    return outcome
+
+
+def print_lab_table(lab, labels, outcome):
+    """Prints, for each question of the lab, how many of its tests passed and whether it is
+    done; then the tests that need the whole solution, and the others."""
+    questions = [(q.label, q.title, ", ".join(q.functions)) for q in lab.questions]
+    rows = []
+    for label, what, where in questions:
+        tests = [name for name, names in labels.items() if label in names]
+        ran = [name for name in tests if outcome.get(name, "not run") != "not run"]
+        passed = [name for name in ran if outcome[name] == "passed"]
+        if not ran:
+            status = "not run"
+        elif len(passed) == len(tests):
+            status = "done"
+        elif len(passed) == len(ran):
+            status = "passed (part run)"
+        else:
+            status = "TO DO"
+        rows.append((label.upper(), what, where, f"{len(passed)}/{len(tests)}", status))
+    # The tests that need the whole solution (labels render-solution, gpu-solution, ...).
+    whole = [name for name, names in labels.items() if any(n.endswith("-solution") for n in names)]
+    whole_ran = [name for name in whole if outcome.get(name, "not run") != "not run"]
+    whole_passed = [name for name in whole_ran if outcome[name] == "passed"]
+    if whole:
+        status = ("not run" if not whole_ran else "done" if len(whole_passed) == len(whole)
+                  else "passed (part run)" if len(whole_passed) == len(whole_ran) else "TO DO")
+        rows.append(("all", "the whole cloth: pictures, GPU = CPU, model",
+                     "every question above", f"{len(whole_passed)}/{len(whole)}", status))
+    others = [name for name, names in labels.items()
+              if not any(q in names for q, _, _ in questions) and name not in whole
+              and name in outcome and outcome[name] != "not run"]
+    other_failed = [name for name in others if outcome[name] == "failed"]
+
+    widths = [max(len(row[i]) for row in rows + [("Q", "question", "where", "tests", "status")])
+              for i in range(5)]
+    line = "  ".join("{:<%d}" % w for w in widths)
+    print()
+    print("The lab, question by question (./test.sh -L q8 checks one):")
+    print(line.format("Q", "question", "where", "tests", "status").rstrip())
+    for row in rows:
+        print(line.format(*row).rstrip())
+    if others:
+        print(f"Other tests: {len(others) - len(other_failed)} of {len(others)} passed" +
+              (f"; failed: {', '.join(sorted(other_failed)[:5])}"
+               + (" ..." if len(other_failed) > 5 else "") if other_failed else ""))
+
+
+# ------------------------------------------------------------------------------------------
+# scripts/grade's outputs.
+
+def question_title(lab, q):
+    return lab.question(q).title
+
+
+def headline(message):
+    """The line of a failure that says what is wrong in the handout's words ('Q8: ...')."""
+    lines = message.splitlines()
+    return next((l.strip() for l in lines if re.match(r"^\s*Q\d+:", l)), lines[0] if lines
+                else "")
+
+
+def gradescope_results(record, lab, version, confinement=""):
+    points = lab.points
+    output = "\n".join(record["notes"]) or "graded by the teacher's tests of every question"
+    if record["build_error"]:
+        output += "\n\nThe first compiler error:\n" + record["build_error"]
+    return {
+        "score": record["score"],
+        "execution_time": record["seconds"],
+        "output": output,
+        # Compiler errors hold <glm::dvec3>: plain text everywhere, never HTML (Gradescope's
+        # default for the top-level output).
+        "output_format": "text",
+        "test_output_format": "text",
+        "test_name_format": "text",
+        "visibility": "visible",
+        "stdout_visibility": "hidden",
+        "extra_data": {"max_score": record["max_score"], "version": version,
+                       "confinement": confinement,
+                       "build_seconds": record.get("build_seconds"),
+                       "test_seconds": record.get("test_seconds")},
+        "tests": [{"name": f"{q}: {question_title(lab, q)}", "number": q[1:],
+                   "score": info["score"], "max_score": points[q],
+                   "status": "passed" if info["score"] >= points[q] else "failed",
+                   "output": info["output"], "output_format": "text",
+                   "visibility": "visible"}
+                  for q, info in record["questions"].items()],
+    }
+
+
+def junit_xml(record, lab):
+    points = lab.points
+    suites = ElementTree.Element("testsuites", name=f"clothlab {record['name']}")
+    total = failed = 0
+    for q, info in record["questions"].items():
+        suite = ElementTree.SubElement(suites, "testsuite", name=f"{q} {question_title(lab, q)}")
+        case = ElementTree.SubElement(suite, "testcase", classname=f"clothlab.{q}",
+                                      name=f"{q}: {info['passed']}/{info['tests']} tests, "
+                                           f"{info['score']:g}/{points[q]:g} points",
+                                      time="0")
+        total += 1
+        if info["status"] == "build error":
+            ElementTree.SubElement(case, "error", message="does not compile").text = info["output"]
+            failed += 1
+        elif info["score"] < points[q]:
+            ElementTree.SubElement(case, "failure",
+                                   message=f"{info['tests'] - info['passed']} test(s) failed"
+                                   ).text = info["output"]
+            failed += 1
+        suite.set("tests", "1")
+        suite.set("failures", "1" if info["status"] not in ("done", "build error") and
+                  info["score"] < points[q] else "0")
+        suite.set("errors", "1" if info["status"] == "build error" else "0")
+    suites.set("tests", str(total))
+    suites.set("failures", str(failed))
+    if record["notes"]:
+        ElementTree.SubElement(suites, "system-out").text = "\n".join(record["notes"])
+    ElementTree.indent(suites)
+    return ElementTree.tostring(suites, encoding="unicode", xml_declaration=True) + "\n"
+
+
+def spreadsheet_text(value):
+    """A cell that a spreadsheet reads as text, never as a formula: a value that begins with
+    = + - @ (or a tab or carriage return) gets a leading apostrophe."""
+    text = str(value)
+    return "'" + text if text[:1] in ("=", "+", "-", "@", "\t", "\r") else text
+
+
+def write_csv(path, records, lab):
+    questions = list(lab.ids)
+    with open(path, "w", newline="") as out:
+        writer = csv.writer(out)
+        writer.writerow(["student", *questions, "total", "max", "notes"])
+        for r in records:
+            writer.writerow([spreadsheet_text(r["name"]),
+                             *(f"{r['questions'][q]['score']:g}" for q in questions),
+                             f"{r['score']:g}", f"{r['max_score']:g}",
+                             spreadsheet_text(" | ".join(r["notes"]))])
+
+
+REPORT_STYLE = """
+body { font: 14px/1.4 system-ui, sans-serif; margin: 24px; color: #222; }
+h1 { font-size: 22px; margin: 0 0 4px; } h2 { font-size: 17px; margin: 24px 0 8px; }
+table { border-collapse: collapse; } td, th { border: 1px solid #ccc; padding: 3px 8px; }
+th { background: #f0f0f0; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
+td.full { background: #c8f0c8; } td.part { background: #fbe7a8; } td.zero { background: #f6c4c4; }
+td.err { background: #d9d9d9; } td.notes { font-size: 12px; color: #555; max-width: 520px; }
+.bar { display: inline-block; height: 10px; background: #4a8; vertical-align: middle; }
+.meta { color: #666; } pre { white-space: pre-wrap; margin: 2px 0; font-size: 12px; }
+ol { margin: 4px 0 12px; }
+"""
+
+
+def write_report(path, records, lab, version, sandbox, elapsed):
+    questions = list(lab.ids)
+    points = lab.points
+    e = html.escape
+    out = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
+           "<title>clothlab: grades of the class</title>", f"<style>{REPORT_STYLE}</style>",
+           "</head><body>", "<h1>clothlab: grades of the class</h1>",
+           f"<p class='meta'>{len(records)} submissions, graded {time.strftime('%Y-%m-%d %H:%M')} "
+           f"in {elapsed:.0f} s; copy version {e(version)}; sandbox: {e(sandbox)}</p>",
+           "<h2>The class</h2>", "<table id='class'><tr><th>student</th>"]
+    out += [f"<th title='{e(question_title(lab, q))}'>{q} ({points[q]:g})</th>"
+            for q in questions]
+    out.append(f"<th>total ({sum(points.values()):g})</th><th>notes</th></tr>")
+    for r in records:
+        out.append(f"<tr><td>{e(r['name'])}</td>")
+        for q in questions:
+            info = r["questions"][q]
+            kind = ("err" if info["status"] in ("build error", "missing") else
+                    "full" if info["score"] >= points[q] else "zero" if info["score"] == 0
+                    else "part")
+            label = "build" if info["status"] == "build error" else f"{info['score']:g}"
+            out.append(f"<td class='num {kind}' title='{info['passed']}/{info['tests']} tests'>"
+                       f"{label}</td>")
+        out.append(f"<td class='num'>{r['score']:g}</td><td class='notes'>"
+                   f"{'<br>'.join(e(n) for n in r['notes'])}</td></tr>")
+    out.append("</table>")
+    out.append("<p class='meta'>Green: every test passes; yellow: some; red: none; grey: "
+               "nothing to grade (build: the question's file does not compile). Points in "
+               "grading/lab.json.</p>")
+    out += ["<h2>Each question</h2>", "<table id='questions'><tr><th>question</th><th>done (all "
+            "tests pass)</th><th>mean score</th><th>tests passed</th></tr>"]
+    for q in questions:
+        done = sum(1 for r in records if r["questions"][q]["status"] == "done")
+        rate = done / len(records) if records else 0
+        mean = sum(r["questions"][q]["score"] for r in records) / max(1, len(records))
+        passed = sum(r["questions"][q]["passed"] for r in records)
+        total = sum(r["questions"][q]["tests"] for r in records)
+        out.append(f"<tr><td>{q}: {e(question_title(lab, q))}</td><td class='num'>"
+                   f"<span class='bar' style='width:{rate * 120:.0f}px'></span> {done}/"
+                   f"{len(records)} ({rate:.0%})</td><td class='num'>{mean:.1f} / "
+                   f"{points[q]:g}</td><td class='num'>{passed}/{total}</td></tr>")
+    out.append("</table>")
+    out.append("<h2>What the class got wrong: the most frequent failures</h2>")
+    for q in questions:
+        counts = Counter()
+        example = {}
+        for r in records:
+            seen = set()
+            info = r["questions"][q]
+            if info["status"] == "build error":
+                seen.add(("does not compile", "(each submission's details give its compiler "
+                                              "error)"))
+            for test, message, kind in info["failures"]:
+                key = (test, headline(message) if message else kind)
+                seen.add(key)
+                example.setdefault(key, message)
+            counts.update(seen)
+        if not counts:
+            continue
+        out.append(f"<h3>{q}: {e(question_title(lab, q))}</h3><ol class='failures'>")
+        for (test, first), count in counts.most_common(3):
+            more = example.get((test, first), "")
+            out.append(f"<li><b>{count} of {len(records)}</b> {e(test)}: <pre>"
+                       f"{e(more or first)}</pre></li>")
+        out.append("</ol>")
+    out.append("<h2>Each submission</h2>")
+    for r in records:
+        out.append(f"<details><summary>{e(r['name'])}: {r['score']:g} / {r['max_score']:g}"
+                   f"</summary>")
+        if r["notes"]:
+            out.append("<pre>" + e("\n".join(r["notes"])) + "</pre>")
+        for q, info in r["questions"].items():
+            out.append(f"<p><b>{q}</b></p><pre>{e(info['output'])}</pre>")
+        out.append("</details>")
+    out.append("</body></html>")
+    path.write_text("\n".join(out) + "\n")

@@ -1,0 +1,342 @@
+#include "window/stage_editors.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "core/stability.hpp"  // the core's: step-size limits (question 4)
+#include "window/analysis_views.hpp"
+#include "window/gpu_section.hpp"
+#include "window/layout_probe.hpp"
+#include "window/widgets.hpp"
+
+namespace clothlab {
+namespace {
+
+constexpr double max_spring_time_step = 0.1;  // s, spring and chain
+constexpr double max_cloth_time_step = 0.02;  // s
+constexpr double max_stiffness = 1e5;         // N/m: far past every stability limit
+constexpr double max_drag_stiffness = 1e5;    // K_d, N/m
+// N: stronger wind folds the default cloth through itself (without self-collision).
+constexpr double max_wind_strength = 20.0;
+
+// Question 4: where dt stands against the step-size limit of the stage's stiffest mode
+// (stability.hpp), as a bar that fills up to the limit.
+void show_stability(const stability_estimate& estimate) {
+  const bool unstable = estimate.ratio >= 1.0;
+  char overlay[64];
+  std::snprintf(overlay, sizeof overlay, "dt / limit = %.3g", estimate.ratio);
+  ImGui::PushStyleColor(ImGuiCol_PlotHistogram, unstable ? warning_red : quiet_green);
+  ImGui::ProgressBar(static_cast<float>(std::min(estimate.ratio, 1.0)), {-1.0f, 0.0f}, overlay);
+  ImGui::PopStyleColor();
+  fixed_lines(estimate.explanation, 3, text_style::disabled);
+}
+
+// dt, mu, m, g0 and the integrator, which every stage has (model.md, "Common"). While the cloth
+// runs on the GPU, the integrators the GPU does not have are offered greyed out.
+void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool cloth = false,
+                   bool on_gpu = false) {
+  slider("dt (s)", dynamics.time_step, 1e-4, max_time_step, "%.5f", true);
+  note_time_step_slider();
+  // mu dt stays at most 1 (the damping factor 1 - mu dt must not turn negative) for every dt
+  // of the slider above.
+  slider("damping mu (1/s)", dynamics.damping, 0.0, 1.0 / max_time_step, "%.3f");
+  slider("mass m (kg)", dynamics.mass, 0.01, 10.0, "%.3f", true);
+  slider("gravity g0 (m/s^2)", dynamics.gravity, 0.0, 30.0, "%.2f");
+  if (ImGui::BeginCombo("integrator", std::string(integrator_name(dynamics.integrator)).c_str())) {
+    for (const integrator_kind kind : all_integrators) {
+      std::string why_not;
+      const bool offered = !on_gpu || gpu_cloth::supports_integrator(kind, why_not);
+      ImGui::BeginDisabled(!offered);
+      if (ImGui::Selectable(std::string(integrator_name(kind)).c_str(),
+                            kind == dynamics.integrator))
+        dynamics.integrator = kind;
+      ImGui::EndDisabled();
+    }
+    ImGui::EndCombo();
+  }
+  if (cloth)  // the same line on both paths, so that switching moves nothing
+    fixed_lines("GPU path: semi-implicit and explicit Euler only", 1, text_style::disabled);
+}
+
+// The mouse drag's spring on a mass of stages 1 and 2 (model.md, "drag").
+void edit_mass_drag(mass_drag_parameters& drag) {
+  fixed_lines("left drag on a mass: pull it (p0 is fixed)", 1, text_style::disabled);
+  slider("drag stiffness K_d (N/m)", drag.stiffness, 1.0, max_drag_stiffness, "%.0f", true);
+}
+
+// The height of the lowest pinned particle; with no pins, of the cloth's start (z = 0, model.md).
+double lowest_pinned_height(const spring_mesh& cloth) {
+  const particle_system& particles = cloth.particles();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    if (particles.is_fixed[k])
+      lowest = std::min(lowest, particles.get_position(k).z);
+  }
+  return std::isfinite(lowest) ? lowest : 0.0;
+}
+
+// What the colours of the springs overlay mean (the renderer's colours).
+void show_spring_legend() {
+  constexpr std::array<std::pair<spring_family, const char*>, 3> families = {{
+      {spring_family::structural, "structural"},
+      {spring_family::shear, "shear"},
+      {spring_family::bending, "bending"},
+  }};
+  for (const auto& [family, name] : families) {
+    if (family != spring_family::structural)
+      ImGui::SameLine();
+    const glm::vec4 c = spring_family_colour(family);
+    ImGui::ColorButton(name, {c.r, c.g, c.b, 1.0f},
+                       ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoDragDrop);
+    ImGui::SameLine(0.0f, 4.0f);
+    ImGui::TextUnformatted(name);
+  }
+}
+
+// The cloth's presets (model.md, "Interaction and contacts"). Each resets the cloth.
+// Drape: no pins, the sphere under the cloth's centre; the cloth falls onto it. The friction is
+// high (mu_s dt = 0.08 at dt = 2 ms): the model's friction only damps the sliding (there is no
+// sticking), and with the default 5/s the draped cloth slides off within seconds, sooner on the
+// GPU paths (float rounding breaks the symmetry sooner).
+void drape_over_sphere(cloth_parameters& p) {
+  p.pins = pin_mode::none;
+  p.sphere = {.enabled = true, .centre = {0.0, 0.0, -0.6}, .radius = 0.3, .friction = 40.0};
+  p.tear_strain = 0.0;
+}
+// Rip: a cloth ten times lighter (m = 0.1 kg, still stable at dt = 2 ms), whose springs tear at
+// 100 % strain. Hanging from its two corners it stays whole (its weight stretches the springs at
+// the pins less than that; the default 1 kg cloth tears there even at 200 %), while the mouse
+// drag (K_d = 2000 N/m) tears it when pulled some 0.3 m away.
+void rip_preset(cloth_parameters& p) {
+  p.pins = pin_mode::corners;
+  p.dynamics.mass = 0.1;
+  p.tear_strain = 1.0;
+  p.drag.stiffness = 2000.0;
+  p.sphere.enabled = false;
+}
+
+// The mouse drag's spring, the sphere, tearing and self-collision (model.md, "Interaction and
+// contacts").
+void edit_interaction(scene& the_scene, user_actions& actions) {
+  cloth_parameters& p = the_scene.cloth_stage.parameters;
+  fixed_lines("left drag on the cloth: pull a particle; Shift + left drag: move the sphere", 2,
+              text_style::disabled);
+  slider("drag stiffness K_d (N/m)", p.drag.stiffness, 1.0, max_drag_stiffness, "%.0f", true);
+  ImGui::Checkbox("sphere", &p.sphere.enabled);
+  ImGui::SameLine();
+  if (ImGui::Button("Drape over a sphere (resets)")) {
+    drape_over_sphere(p);
+    actions.reset = true;
+    std::printf("clothlab-window: preset Drape over a sphere\n");
+    std::fflush(stdout);
+  }
+  log_widget("Drape over a sphere");
+  const double low = -3.0, high = 3.0;
+  ImGui::SliderScalarN("centre c (m)", ImGuiDataType_Double, &p.sphere.centre.x, 3, &low, &high,
+                       "%.2f", ImGuiSliderFlags_AlwaysClamp);
+  slider("radius r (m)", p.sphere.radius, 0.02, 2.0, "%.2f", true);
+  // mu_s dt <= 1 for every dt of the cloth's slider.
+  slider("friction mu_s (1/s)", p.sphere.friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
+
+  slider("tear strain eps (0: off)", p.tear_strain, 0.0, 3.0, "%.3f");
+  // On its own line: beside the full-width slider the panel's edge would cut it off.
+  if (ImGui::Button("Rip (resets)")) {
+    rip_preset(p);
+    actions.reset = true;
+    std::printf("clothlab-window: preset Rip: m = %g kg, tear strain %g, K_d = %g N/m\n",
+                p.dynamics.mass, p.tear_strain, p.drag.stiffness);
+    std::fflush(stdout);
+  }
+  log_widget("Rip");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("a 0.1 kg cloth that tears at 100 %% strain under the mouse");
+  ImGui::SameLine();
+  fixed_lines("torn springs stay torn: R restores them", 1, text_style::disabled);
+
+  // The thickness is remembered while self-collision is off (the model's off is d = 0).
+  static double thickness = 0.02;
+  bool self_collision = p.self_collision_thickness > 0.0;
+  if (self_collision)
+    thickness = p.self_collision_thickness;
+  ImGui::Checkbox("self-collision", &self_collision);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);
+  // Up to the shortest rest length h, where the model clamps it (docs/model.md).
+  const double h = p.side_length / std::max(p.grid_size - 1, 1);
+  slider("thickness d (m)", thickness, 0.001, std::max(0.001, std::min(0.2, h)), "%.3f", true);
+  p.self_collision_thickness = self_collision ? thickness : 0.0;
+  // The GPU paths run what gpu_cloth::supports accepts; anything else takes the cloth back to
+  // the CPU (scene::draw_scene), and this line says why beforehand.
+  if (std::string why; the_scene.backend() != cloth_backend::cpu && !gpu_cloth::supports(p, why))
+    fixed_lines(why, 2, text_style::coloured, caution_yellow);
+  else
+    fixed_lines("", 2);
+}
+
+}  // namespace
+
+void edit_stage(scene& the_scene, user_actions& actions) {
+  constexpr std::array<std::pair<stage_kind, const char*>, 3> stages = {{
+      {stage_kind::spring, "1 spring"},
+      {stage_kind::coupled, "2 coupled"},
+      {stage_kind::cloth, "3 cloth"},
+  }};
+  for (const auto& [stage, label] : stages) {
+    if (stage != stage_kind::spring)
+      ImGui::SameLine();
+    if (ImGui::RadioButton(label, the_scene.stage() == stage))
+      actions.select_stage = stage;
+  }
+}
+
+void edit_simulation_control(simulation_control& control, user_actions& actions) {
+  if (ImGui::Button(control.running ? "Pause (Space)" : "Run (Space)"))
+    actions.toggle_running = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Step (N)"))
+    actions.single_step = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset (R)"))
+    actions.reset = true;
+
+  int mode = static_cast<int>(control.mode);
+  ImGui::RadioButton("real time", &mode, static_cast<int>(time_mode::real_time));
+  log_widget("real time");
+  ImGui::SameLine();
+  ImGui::RadioButton("fixed steps per frame", &mode, static_cast<int>(time_mode::steps_per_frame));
+  log_widget("fixed steps per frame");
+  control.mode = static_cast<time_mode>(mode);
+  // Both modes take the height of three sliders, so that nothing below moves at a switch.
+  const float top = ImGui::GetCursorPosY();
+  if (control.mode == time_mode::real_time) {
+    slider("speed (sim s/wall s)", control.real_time_speed, 0.05, 2.0, "%.2f");
+    slider("max steps per frame", control.max_steps_per_frame, 1, 5000);
+    slider("max step time/frame (s)", control.max_simulation_seconds_per_frame, 0.005, 0.5, "%.3f",
+           true);
+  } else {
+    slider("steps per frame", control.steps_per_frame, 1, 500);
+    fixed_lines(format("each frame advances t by %d x dt, however long the frame takes",
+                       control.steps_per_frame),
+                2, text_style::disabled);
+  }
+  const float spacing = ImGui::GetStyle().ItemSpacing.y;
+  const float missing = top + 3 * ImGui::GetFrameHeightWithSpacing() - ImGui::GetCursorPosY();
+  if (missing > 0.0f)
+    ImGui::Dummy({1.0f, std::max(missing - spacing, 0.0f)});
+}
+
+void edit_single_spring(scene& the_scene, user_actions& actions) {
+  single_spring& stage = the_scene.spring_stage;
+  if (section("Q2-Q4 spring: dt, K, damping")) {
+    edit_dynamics(stage.parameters.dynamics, max_spring_time_step);
+    slider("stiffness K (N/m)", stage.parameters.stiffness, 0.0, max_stiffness, "%.2f", true);
+    show_stability(estimate_stability(stage));
+  }
+  if (section("Q2 motion: extension x(t), exact solution, error"))
+    show_spring_motion(the_scene, actions);
+  if (section("Mouse"))
+    edit_mass_drag(stage.parameters.drag);
+}
+
+void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
+  if (section("Q5 coupled springs: the chain")) {
+    actions.reset |= slider("masses n (rebuilds)", stage.parameters.mass_count, 1, 50);
+  }
+  if (section("Q4 dt, K, damping")) {
+    edit_dynamics(stage.parameters.dynamics, max_spring_time_step);
+    slider("stiffness K (N/m)", stage.parameters.stiffness, 0.0, max_stiffness, "%.2f", true);
+    show_stability(estimate_stability(stage));
+  }
+  if (section("Mouse"))
+    edit_mass_drag(stage.parameters.drag);
+}
+
+void edit_cloth(scene& the_scene, user_actions& actions) {
+  spring_mesh& stage = the_scene.cloth_stage;
+  render_settings& display = the_scene.display;
+  cloth_parameters& p = stage.parameters;
+  if (section("Q4 dt, damping")) {
+    edit_dynamics(p.dynamics, max_cloth_time_step, true, the_scene.backend() != cloth_backend::cpu);
+    show_stability(estimate_stability(stage));
+  }
+  if (section("Q8 springs: three stiffnesses")) {
+    slider("K_struct (N/m)", p.structural_stiffness, 0.0, max_stiffness, "%.1f", true);
+    slider("K_shear (N/m)", p.shear_stiffness, 0.0, max_stiffness, "%.1f", true);
+    slider("K_bend (N/m)", p.bending_stiffness, 0.0, max_stiffness, "%.1f", true);
+    ImGui::Checkbox("show the springs, coloured by family", &display.show_springs);
+    show_spring_legend();
+  }
+  if (section("Q7 pins")) {
+    int pins = p.pins == pin_mode::corners ? 0 : 1;
+    actions.reset |= ImGui::RadioButton("two corners", &pins, 0);
+    ImGui::SameLine();
+    actions.reset |= ImGui::RadioButton("none: free fall (rebuilds)", &pins, 1);
+    p.pins = pins == 0 ? pin_mode::corners : pin_mode::none;
+  }
+  if (section("Q9 ground")) {
+    ImGui::Checkbox("ground plane z = z_g", &p.ground_enabled);
+    // The floor stays below the pins (or, with none, below the flat cloth's start): a floor above
+    // them would be a ceiling.
+    const double highest_ground = lowest_pinned_height(stage) - 0.05;
+    slider("height z_g (m)", p.ground_height, -3.0, highest_ground, "%.2f");
+    p.ground_height = std::min(p.ground_height, highest_ground);
+    // mu_g dt <= 1 for every dt of the cloth's slider.
+    slider("friction mu_g (1/s)", p.ground_friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
+  }
+  if (section("Q10 resolution")) {
+    actions.reset |= slider("grid N (rebuilds)", p.grid_size, 2, 100);
+    actions.reset |= slider("side S (m, rebuilds)", p.side_length, 0.2, 4.0, "%.2f");
+    int scaling = static_cast<int>(p.scaling);
+    ImGui::RadioButton("per particle (handout)", &scaling,
+                       static_cast<int>(resolution_scaling::per_particle));
+    ImGui::SameLine();
+    ImGui::RadioButton("resolution-independent", &scaling,
+                       static_cast<int>(resolution_scaling::resolution_independent));
+    p.scaling = static_cast<resolution_scaling>(scaling);
+    if (p.scaling == resolution_scaling::resolution_independent)
+      slider("reference grid N_ref", p.reference_grid_size, 2, 100);
+    // What the simulation really uses at this N (parameters.hpp).
+    const cloth_parameters effective = effective_cloth_parameters(p);
+    ImGui::Text("h = S/(N-1) = %.4g m, %d particles", p.side_length / (p.grid_size - 1),
+                p.grid_size * p.grid_size);
+    ImGui::Text("used: m = %.4g kg, K_bend = %.4g N/m", effective.dynamics.mass,
+                effective.bending_stiffness);
+  }
+  if (section("Q13 wind")) {
+    slider("strength K_w (N)", p.wind_strength, 0.0, max_wind_strength, "%.2f");
+    glm::dvec3 direction = p.wind_direction;
+    const double min = -1.0, max = 1.0;
+    ImGui::SliderScalarN("direction u_w", ImGuiDataType_Double, &direction.x, 3, &min, &max, "%.2f",
+                         ImGuiSliderFlags_AlwaysClamp);
+    // u_w is normalised before use: a zero vector has no direction, keep the previous one.
+    if (direction != glm::dvec3(0.0))
+      p.wind_direction = direction;
+  }
+  if (section("Mouse, sphere, tearing, self-collision"))
+    edit_interaction(the_scene, actions);
+  if (section("Q11-Q12 GPU"))
+    show_gpu_path(the_scene, actions);
+}
+
+void edit_display(render_settings& display, user_actions& actions) {
+  ImGui::Checkbox("cloth wireframe (W)", &display.wireframe);
+  ImGui::SameLine();
+  ImGui::Checkbox("ground", &display.show_ground);
+  if (ImGui::Button("Reset view (V)"))
+    actions.reset_view = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot (P)"))
+    actions.screenshot = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Keys (H)"))
+    actions.toggle_help = true;
+}
+
+}  // namespace clothlab

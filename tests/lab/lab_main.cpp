@@ -1,0 +1,31 @@
+// The main of every question test program (the checker): GoogleTest, with the lab runner
+// (runner_client.hpp) reset at the start of each test and ended with the program.
+#include <sys/prctl.h>
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+
+#include "lab_check.hpp"
+#include "runner_client.hpp"
+
+namespace {
+
+class lab_listener : public ::testing::EmptyTestEventListener {
+  void OnTestStart(const ::testing::TestInfo&) override { clothlab::lab::start_test_checks(); }
+  void OnTestProgramEnd(const ::testing::UnitTest&) override {
+    clothlab::lab::runner::instance().stop();
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // The runner, the student's code, may run as the same user as this program (./test.sh): it
+  // may not read or write this process's memory (ptrace, /proc/<pid>/mem).
+  ::prctl(PR_SET_DUMPABLE, 0);
+  std::signal(SIGPIPE, SIG_IGN);  // a runner that is gone is seen by the write that fails
+  ::testing::InitGoogleTest(&argc, argv);
+  ::testing::UnitTest::GetInstance()->listeners().Append(new lab_listener);
+  return RUN_ALL_TESTS();
+}
