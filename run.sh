@@ -33,18 +33,60 @@ if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ] || [ "$(uname -s)" = D
 fi
 
 echo "clothlab: no display (DISPLAY is not set): rendering each stage off-screen instead."
-echo "          For the window, run ./run.sh from a desktop session, or: xvfb-run -a ./run.sh"
 mkdir -p "$root/out"
+# The cloth's final state on each path (its last step only), to say what the pictures show.
+states=$(mktemp -d)
+trap 'rm -rf "$states"' EXIT
 tour=(
   "spring:--stage spring --steps 100"
   "coupled:--stage coupled --steps 150"
-  "cloth:--stage cloth --steps 1500"
+  "cloth:--stage cloth --steps 1500 --csv $states/cpu.csv --csv-every 1500"
   "cloth-wind:--stage cloth --steps 1500 --wind-strength 20 --wind-dir 0,1,0.2"
-  "cloth-gpu:--stage cloth --backend gpu --steps 1500"
+  "cloth-gpu:--stage cloth --backend gpu --steps 1500 --csv $states/gpu.csv --csv-every 1500"
 )
 for entry in "${tour[@]}"; do
   name=${entry%%:*}
   read -r -a args <<<"${entry#*:}"
   "$root/build/clothlab" --headless "${args[@]}" "$@" --png "$root/out/$name.png"
-  echo "  wrote out/$name.png  (clothlab --headless ${entry#*:} --png out/$name.png)"
+  shown=${entry#*:}
+  echo "  wrote out/$name.png  (clothlab --headless ${shown%% --csv *} --png out/$name.png)"
 done
+
+# What the cloth of a picture does, from its last step: hangs, lies on the floor, or went
+# through it (the floor at z = -1; the questions that hold the cloth up are 6 to 9).
+cloth_state() {  # CSV
+  awk -F, 'NR > 1 { step[NR] = $1; z[NR] = $6; last = $1 }
+    END {
+      n = 0; below = 0; low = 1e30; high = -1e30
+      for (i in step) if (step[i] == last) {
+        n++; if (z[i] < -1.05) below++
+        if (z[i] < low) low = z[i]; if (z[i] > high) high = z[i]
+      }
+      if (n == 0) print "unknown"
+      else if (below == n) printf "fell through the floor, out of the picture (its highest point at z = %.3g m)\n", high
+      else if (below > 0) printf "hangs in part: %d of its %d particles went through the floor\n", below, n
+      else if (high < -0.9) print "lies on the floor: nothing holds it up"
+      else print "hangs above the floor"
+    }' "$1" 2>/dev/null || echo unknown
+}
+if [ -f "$states/cpu.csv" ]; then
+  cpu=$(cloth_state "$states/cpu.csv")
+  gpu=$( [ -f "$states/gpu.csv" ] && cloth_state "$states/gpu.csv" || echo unknown)
+  echo "clothlab: what the cloth pictures show: on the CPU (out/cloth.png) the cloth $cpu;"
+  echo "          on the GPU (out/cloth-gpu.png) it $gpu."
+  case "$cpu" in
+    fell*) echo "          The cloth's questions are still to do: 6 (apply_force), 7 (the pins), 8" \
+                "(the springs) and 9 (the ground); ./test.sh shows which (README: Your tasks)." ;;
+    "hangs in part"*) echo "          Part of it falls: questions 8 (the springs) and 9 (the ground)." ;;
+    lies*) echo "          Nothing holds it: question 7 (the two pinned corners)." ;;
+  esac
+  case "$gpu" in
+    fell* | "hangs in part"*)
+      case "$cpu" in
+        hangs\ above*) echo "          On the GPU: questions 12 (the springs) and 9 (the ground, in" \
+                             "shaders/gpu_cloth_common.glsl)." ;;
+      esac ;;
+  esac
+fi
+echo "          The pictures are still: for the window (the lab's panel, live), run ./run.sh from a"
+echo "          desktop session, or on this machine: xvfb-run -a ./run.sh"

@@ -1,15 +1,20 @@
 #!/usr/bin/env bash
 # Sets clothlab up (missing packages, Release build in build/) and runs every test with
 # ctest: physics, command line, off-screen screenshots, GPU paths, the window under Xvfb, and the
-# lab's grader (labels q5 ... q13), then prints the table of the lab's questions. In the
-# teacher's copy, a plain run also builds the browser version (build-web/) and opens it in
-# headless chromium (label web, docs/web.md), then builds the same sources with AddressSanitizer and
+# lab's grader (labels q5 ... q13), then prints the table of the lab's questions.
+# BEGIN TEACHER
+# A plain run also builds the browser version (build-web/) and opens it in headless chromium
+# (label web, docs/web.md), then builds the same sources with AddressSanitizer and
 # UndefinedBehaviorSanitizer (in build-sanitize/) and runs the core, cli, model and stability
 # tests there: a finding fails the run.
 #   ./test.sh [ctest options]             e.g. ./test.sh -L q8 (one question; no sanitizer run)
+# END TEACHER
+# COPY| #   ./test.sh [ctest options]             e.g. ./test.sh -L q8 (one question)
 #   ./test.sh --sanitize [ctest options]  the sanitizer build only, every test unless options
 #                                         say otherwise, e.g. ./test.sh --sanitize -L cli
+# BEGIN TEACHER
 # CLOTHLAB_SKIP_SANITIZE=1 ./test.sh skips the sanitizer part of the plain run.
+# END TEACHER
 set -euo pipefail
 root=$(cd "$(dirname "$0")" && pwd)
 

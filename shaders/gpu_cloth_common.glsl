@@ -10,9 +10,9 @@
 // code's neighbour_offsets (src/core/grid_neighbours.hpp), in GLSL: a test checks they are equal.
 const int neighbour_count = 12;
 const ivec3 neighbours[neighbour_count] = ivec3[neighbour_count](
-    ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0),       // structural, h
-    ivec3(1, 1, 1), ivec3(-1, -1, 1), ivec3(1, -1, 1), ivec3(-1, 1, 1),     // shear, h√2
-    ivec3(2, 0, 2), ivec3(-2, 0, 2), ivec3(0, 2, 2), ivec3(0, -2, 2));      // bending, 2h
+    ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0),       // structural
+    ivec3(1, 1, 1), ivec3(-1, -1, 1), ivec3(1, -1, 1), ivec3(-1, 1, 1),     // shear
+    ivec3(2, 0, 2), ivec3(-2, 0, 2), ivec3(0, 2, 2), ivec3(0, -2, 2));      // bending
 
 uniform float time_step;      // dt, s
 uniform float damping;        // mu, 1/s

@@ -12,7 +12,7 @@ uniform usampler2D spring_mask_texture;  // bit i: a spring joins the particle t
 uniform int grid_size;               // N
 
 uniform vec3 stiffness;    // K (N/m) of the structural, shear and bending springs
-uniform vec3 rest_length;  // L0 (m) of the structural, shear and bending springs: h, h√2, 2h
+uniform vec3 rest_length;  // L0 (m) of the structural, shear and bending springs
 
 uniform float wind_strength;   // K_w, N
 uniform vec3 wind_direction;   // u_w, unit

@@ -34,6 +34,8 @@ BEGIN = re.compile(r"^\s*(//|#)\s*BEGIN SOLUTION (Q\d+)\s*(?::\s*(.*))?$")
 END = re.compile(r"^\s*(//|#)\s*END SOLUTION (Q\d+)\s*$")
 STUDENT = re.compile(r"^(\s*)(?://|#) STUDENT(?:\((\w+)\))?\|(?: (.*))?$")
 COPY = re.compile(r"^(\s*)(?://|#) COPY\|(?: (.*))?$")
+# In Markdown, a line <!-- COPY| text --> is `text` in the copy.
+COPY_MARKDOWN = re.compile(r"^(\s*)<!-- COPY\|(?: (.*?))? -->$")
 TEACHER_BEGIN = re.compile(r"^\s*(<!--|//|#)\s*BEGIN TEACHER\b")
 TEACHER_END = re.compile(r"^\s*(<!--|//|#)\s*END TEACHER\b")
 TASKS_LINE = "<!-- YOUR TASKS -->"
@@ -98,7 +100,7 @@ def transform(name, text, keep, regions, hints="handout", questions=None):
             raise RegionError(f"{name}:{i + 1}: END SOLUTION without BEGIN SOLUTION")
         if STUDENT.match(line):
             raise RegionError(f"{name}:{i + 1}: a STUDENT| line outside a solution region")
-        copy = COPY.match(line)
+        copy = COPY.match(line) or (name.endswith(".md") and COPY_MARKDOWN.match(line))
         if copy:
             out.append(copy.group(1) + (copy.group(2) or ""))
             i += 1

@@ -261,11 +261,17 @@ parse_result parse_command_line(int argc, const char* const* argv) {
           "COUNT >= 1"));
   app.add_option("--stage", stage, "spring | coupled | cloth (default cloth)")
       ->check(CLI::IsMember(stages));
+  // BEGIN TEACHER
   app.add_option("--backend", backend,
                  "cpu (default, the lab's code) | cpu-parallel | gpu (fragment shaders) | "
                  "gpu-compute: the cloth's simulation path")
       ->check(CLI::IsMember(backends));
   app.add_option("--threads", o.threads, "cpu-parallel: threads (default: all cores)");
+  // END TEACHER
+  // COPY| app.add_option("--backend", backend,
+  // COPY|                "cpu (default, the lab's code) | gpu (fragment shaders): the cloth's path")
+  // COPY|     ->check(CLI::IsMember(backends));
+  // COPY| app.add_option("--threads", o.threads)->group("");  // the teacher's parallel path's
   app.add_option("--gl", gl,
                  "auto (default: EGL on a hardware GPU, else OSMesa) | egl | osmesa: the "
                  "off-screen OpenGL of --backend gpu* and --png")

@@ -292,13 +292,16 @@ void window_app::frame(const window_input& input) {
   const double frame_seconds = now - previous_time_;
   previous_time_ = now;
   const double frame_start = now;
-  user_actions actions = actions_from_keys(input.pressed_keys);
   mouse_->update(context_.window(), input.scroll, scene_);
 
   // ---- 2. UI: the panel edits the parameters; actions from keys and buttons applied ----
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
+  // The keys after NewFrame: whether the panel has the keyboard (a value being typed) is then
+  // that of the frame before, not of two frames ago (a key pressed just after a click on a
+  // widget, whose release the frame before saw, was lost).
+  user_actions actions = actions_from_keys(input.pressed_keys);
   const float panel_covered_width = build_control_panel(scene_, actions);
   draw_drag_line(scene_);
   if (show_help_)

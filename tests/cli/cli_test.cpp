@@ -306,7 +306,8 @@ INSTANTIATE_TEST_SUITE_P(
         arguments{"--integrator", "implicit"}, arguments{"--energy-csv", "energy.csv"},
         arguments{"--scaling", "resolution-independent"},
         arguments{"--scaling", "resolution-independent", "--reference-N", "10"},
-        arguments{"--scaling", "per-particle"},
+        arguments{"--scaling", "per-particle"}, arguments{"--stage", "spring", "--start", "1d"},
+        arguments{"--stage", "spring", "--start", "3d"},
         // Issue 9: the other paths and the off-screen contexts.
         // BEGIN TEACHER (the student copy has no parallel CPU path)
         arguments{"--backend", "cpu-parallel"},
@@ -685,6 +686,8 @@ INSTANTIATE_TEST_SUITE_P(
                   "--ground-friction"},
         bad_usage{"UnknownContext", {"--gl", "vulkan"}, "--gl"},
         bad_usage{"ThreadsWithoutParallel", {"--threads", "2"}, "--threads"},
+        bad_usage{"StartOnTheCloth", {"--start", "1d"}, "--start"},
+        bad_usage{"StartUnknown", {"--stage", "spring", "--start", "2d"}, "--start"},
         // BEGIN TEACHER
         bad_usage{"TooManyThreads",
                   {"--backend", "cpu-parallel", "--threads", "100000"},
@@ -838,6 +841,33 @@ TEST_F(SolutionCli, TornTrianglesLeaveTheObjOnBothCpuPaths) {
 }
 
 }  // namespace
+
+// Question 2 on the command line: with --start 1d the mass moves on the spring's line (its
+// velocity only ever along z) and its period, measured between the highest points (vz from +
+// to -), is the harmonic oscillator's 2 pi / sqrt(K / m) (semi-implicit Euler's frequency is
+// (2 / dt) asin(omega dt / 2): 8e-5 off at dt = 0.01 s). The handout's start gives 1.12 s.
+TEST_F(cli, Start1dSpringHasTheHarmonicOscillatorsPeriod) {
+  const run_result result = run({"--headless", "--stage", "spring", "--start", "1d", "--mu", "0",
+                                 "--steps", "1000", "--csv", "spring.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::vector<double> highest;  // times of the highest points
+  const csv_row* previous = nullptr;
+  for (const csv_row& row : read_csv(work() / "spring.csv").rows) {
+    if (row.particle != 1)
+      continue;
+    EXPECT_EQ(row.value[0], 0.1) << "x moved at t = " << row.t;
+    EXPECT_EQ(row.value[4], 0.0) << "vy at t = " << row.t;
+    if (previous != nullptr && previous->value[5] > 0 && row.value[5] <= 0) {
+      const double f = previous->value[5] / (previous->value[5] - row.value[5]);
+      highest.push_back(previous->t + f * (row.t - previous->t));
+    }
+    previous = &row;
+  }
+  ASSERT_GE(highest.size(), 5u);
+  const double period = (highest.back() - highest.front()) / double(highest.size() - 1);
+  const double predicted = 2.0 * M_PI / std::sqrt(20.0 / 1.0);
+  EXPECT_NEAR(period, predicted, 2e-4 * predicted) << "measured " << period;
+}
 
 // Energies at step 0 of the single spring, by hand (m = 1, g0 = 9.8): kinetic m |v|^2 / 2 with
 // v = (1, -1, 0) is 1; gravity m g0 z of p1 at z = 0.5 is 4.9 (p0 is fixed and counts nothing);
@@ -1388,21 +1418,35 @@ TEST_F(cli, TimeoutsTwoSignalsLeaveWholeFiles) {
       {"--headless", "--stage", "spring", "--sweep", "s.csv", "--sweep-dt", "1e-4:1e-3:8",
        "--sweep-K", "1:100:8", "--sweep-time", "1000"},
       {"--headless", "--N", "20", "--steps", "1000000000", "--csv-every", "100", "--csv", "s.csv"}};
-  // Under timeout itself, then the same two signals sent by hand 20 ms apart (two signals sent
-  // back to back to a process that is not running merge into one).
+  // Under timeout itself (SIGTERM sent to timeout, which passes it on as on expiry), then the
+  // same two signals sent by hand 20 ms apart (two signals sent back to back to a process that
+  // is not running merge into one). Each once the run has begun: its CSV's temporary file is
+  // there (on a loaded machine a fixed 0.3 s could end before the program had started).
+  const auto run_has_begun = [this] {
+    for (int i = 0; i < 6000; ++i) {
+      for (const auto& entry : fs::directory_iterator(work()))
+        if (entry.path().filename().string().starts_with(".s.csv."))
+          return true;
+      usleep(10000);
+    }
+    return false;
+  };
   for (const arguments& run : runs) {
     for (const bool by_timeout : {true, false}) {
       fs::remove_all(work());
       fs::create_directory(work());
       ended result;
       if (by_timeout) {
-        arguments argv = {"/usr/bin/timeout", "--preserve-status", "0.3"};
+        arguments argv = {"/usr/bin/timeout", "--preserve-status", "1000"};
         const arguments command = clothlab_command(run);
         argv.insert(argv.end(), command.begin(), command.end());
-        result = wait_for(spawn({argv, work()}), work());
+        const pid_t timeout = spawn({argv, work()});
+        EXPECT_TRUE(run_has_begun()) << join(run) << ": no CSV begun within 60 s";
+        kill(timeout, SIGTERM);
+        result = wait_for(timeout, work());
       } else {
         const pid_t child = spawn({clothlab_command(run), work()});
-        usleep(300000);
+        EXPECT_TRUE(run_has_begun()) << join(run) << ": no CSV begun within 60 s";
         kill(child, SIGTERM);
         usleep(20000);
         kill(child, SIGTERM);

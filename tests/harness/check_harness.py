@@ -35,6 +35,8 @@ CASES = {
     # The sandbox's words come before the runner: here they set the mode.
     "sandbox_prefix": ({"CLOTHLAB_LAB_SANDBOX": '["env", "CLOTHLAB_FAKE_RUNNER=crash"]'},
                        WHERE + "crashed: segmentation fault", 20),
+    "sandbox_escapes": ({"CLOTHLAB_LAB_SANDBOX": ' [ "env" ,"CLOTHLAB_FAKE_RUNNER=cr\\u0061sh" ] '},
+                        WHERE + "crashed: segmentation fault", 20),
     "sandbox_not_json": ({"CLOTHLAB_LAB_SANDBOX": '["env", '},
                          WHERE + "could not be started: CLOTHLAB_LAB_SANDBOX is not a JSON array",
                          20),
@@ -99,7 +101,7 @@ def main():
         if run.returncode < 0:
             fail(f"the checker crashed (signal {-run.returncode}):\n{tail}")
         if run.returncode == 0:
-            fail(f"the checker PASSED with a runner that {case.replace('_', ' ')}s:\n{tail}")
+            fail(f"the checker PASSED with a misbehaving runner ({case}):\n{tail}")
         if expected not in output:
             fail(f"the failure does not say '{expected}':\n{tail}")
         try:

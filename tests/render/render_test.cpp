@@ -470,12 +470,13 @@ TEST_F(BrokenDataTest, ShaderThatDoesNotCompileIsNamedWithItsLog) {
 }
 
 // The loader puts the #version line before the file: the compiler's line numbers are still the
-// file's own ("0:3(" in Mesa's log, "0(3)" in others'), also below an #include.
+// file's own, each message at its file ("draw_ground.frag:3(" from Mesa's "0:3(",
+// "draw_ground.frag(3)" from others' "0(3)"), also below an #include.
 TEST_F(BrokenDataTest, ShaderErrorsGiveTheFilesOwnLineNumbers) {
   const auto names_line = [](const std::string& log, int line) {
     const std::string n = std::to_string(line);
-    return log.find("0:" + n + "(") != std::string::npos ||
-           log.find("0(" + n + ")") != std::string::npos;
+    return log.find(".frag:" + n + "(") != std::string::npos ||
+           log.find(".frag(" + n + ")") != std::string::npos;
   };
   overwrite(data_ / "shaders" / "draw_ground.frag", "// line 1\n\nvoid main() { oops; }\n");
   renderer r;

@@ -163,6 +163,11 @@ def main():
         check(toured.returncode == 0 and len(list((dest / "out").glob("*.png"))) >= 5,
               f"./run.sh of the copy did not render its tour: {toured.stdout[-800:]}"
               f"{toured.stderr[-800:]}")
+        # ... and says what its pictures show: on the stubs the cloth falls through the floor.
+        check("the cloth fell through the floor" in toured.stdout and
+              "xvfb-run -a ./run.sh" in toured.stdout,
+              f"./run.sh of the copy does not say that the cloth fell (questions 6 to 9) and "
+              f"how to open the window: {toured.stdout[-800:]}")
 
         # 4. The states a student goes through: each question alone, and the lab's order
         # (docs/lab.md) question after question. In each, the restored questions' tests pass and

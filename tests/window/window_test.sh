@@ -111,6 +111,17 @@ wait_for_log() {
   return 1
 }
 
+# Waits up to 30 s for a line of the program's output that was not there before: the log has
+# more lines matching PATTERN than COUNT, the number counted before the action that prints it
+# (wait_for_log would take a line printed earlier by the same state for the action's answer).
+wait_for_new_log() {  # PATTERN COUNT
+  for _ in $(seq 120); do
+    [ "$(grep -c "$1" window.log)" -gt "$2" ] && return 0
+    sleep 0.25
+  done
+  return 1
+}
+
 # The window has built its panel once (its first layout line): it is drawing and takes input.
 # (A fixed sleep here let a test's first drag start before the first frame under load.)
 wait_for_log "^clothlab-window: layout: " || fail "the window drew no frame within 30 s"
@@ -349,7 +360,11 @@ case "$scenario" in
     # student's copy does before questions 6 to 9): the window says so, over the scene.
     wait_for_log "the cloth stage fell out of view at t = " ||
       fail "the free-falling cloth never left the view (or the window did not say it)"
+    # The banner's window appears the frame after the line, sized there and drawn from the frame
+    # after: a first screenshot marks a frame past the line, the second one shows the banner.
+    first=$(screenshot_of cloth)
     shot=$(screenshot_of cloth)
+    [ "$shot" != "$first" ] || fail "the second screenshot is the first one ($first)"
     check_image "$shot" 1280 800 20
     # The banner: a dark box over the light sky right of the panel (the sky has no dark pixel).
     dark=$(convert "$shot" -crop 870x800+410+0 +repage -sample 25% -fx "r < 0.3 && g < 0.3 && b < 0.3" \
@@ -509,11 +524,14 @@ case "$scenario" in
     wait_for_log "cloth: CPU -> GPU at step" || fail "G did not switch the cloth to the GPU"
     press n
     # The time mode: "fixed steps per frame" shows other widgets in the same height.
+    before=$(grep -c "layout: cloth stage, paused, fixed steps, GPU," window.log || true)
     click_widget "fixed steps per frame"
-    wait_for_log "layout: cloth stage, paused, fixed steps, GPU," ||
+    wait_for_new_log "layout: cloth stage, paused, fixed steps, GPU," "$before" ||
       fail "a click on \"fixed steps per frame\" did not change the time mode"
+    # (the state "paused, real time" was there before the click: a new line of it is the answer)
+    before=$(grep -c "layout: cloth stage, paused, real time, GPU, message yes" window.log || true)
     click_widget "real time"
-    wait_for_log "layout: cloth stage, paused, real time, GPU, message yes" ||
+    wait_for_new_log "layout: cloth stage, paused, real time, GPU, message yes" "$before" ||
       fail "no layout line after going back to real time"
     check_steady_panel cloth 5
     ;;
