@@ -51,6 +51,8 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
     return nullptr;
   }
   glfwSetErrorCallback(remember_glfw_error);
+  // (macOS: the working directory stays where the output files are written.)
+  glfwInitHint(GLFW_COCOA_CHDIR_RESOURCES, GLFW_FALSE);
   if (glfwInit() != GLFW_TRUE) {
     error =
         "this build renders off screen in a hidden GLFW window (it has neither OSMesa nor "

@@ -15,13 +15,17 @@ BACKENDS = ('cpu', 'gpu', 'gpu-compute')
 # COPY| BACKENDS = ('cpu', 'gpu')  # the copy has no compute path
 for backend in BACKENDS:
     path = os.path.join(workdir, backend + '.obj')
-    subprocess.run([B] + ARGS + ['--backend', backend, '--obj', path], check=True,
-                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    run = subprocess.run([B] + ARGS + ['--backend', backend, '--obj', path],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if backend == 'gpu-compute' and run.returncode == 1 and 'needs OpenGL 4.3' in run.stderr:
+        print("gpu-compute left out: " + run.stderr.strip())  # (macOS: OpenGL 4.1)
+        continue
+    run.check_returncode()
     with open(path) as f:
         faces[backend] = sum(1 for line in f if line.startswith('f '))
     os.remove(path)
 os.rmdir(workdir)
 whole = 2 * (N - 1) ** 2
 print(f"faces of the OBJ after tearing: {faces} (untorn: {whole})")
-ok = faces['cpu'] < whole and all(faces[backend] == faces['cpu'] for backend in BACKENDS)
+ok = faces['cpu'] < whole and all(faces[b] == faces['cpu'] for b in faces)
 sys.exit(0 if ok else 1)
