@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets clothlab up (missing Debian packages, Release build in build/) and runs the demo:
+# Sets clothlab up (missing packages: apt-get on Debian and Ubuntu, Homebrew on macOS; Release
+# build in build/) and runs the demo:
 # the window when a display is available, else a tour of the stages rendered to PNG in out/.
 #   ./run.sh [clothlab options]     e.g. ./run.sh --stage spring --K 50
 #   ./run.sh --web [--port PORT]    the lab in a browser (docs/web.md): installs emscripten,
@@ -26,7 +27,8 @@ case "${1:-}" in
 esac
 "$root/scripts/setup.sh" Release
 
-if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
+# (macOS always has its display, without DISPLAY.)
+if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ] || [ "$(uname -s)" = Darwin ]; then
   exec "$root/build/clothlab" "$@"
 fi
 

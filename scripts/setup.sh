@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian packages clothlab needs (only the missing ones), then configures and
-# builds it. Used by ./run.sh and ./test.sh; safe to run again.
+# Installs the packages clothlab needs (only the missing ones: apt-get on Debian and Ubuntu,
+# Homebrew on macOS, scripts/install-packages.sh), then configures and builds it. Used by ./run.sh
+# and ./test.sh; safe to run again.
 #   scripts/setup.sh [BUILD_TYPE] [--with-web]   (default Release; build folder: build/)
 # --with-web: also the browser build's packages (emscripten, chromium, chromedriver), in the same
 # apt-get run (./test.sh; scripts/setup-web.sh builds the page).
@@ -16,8 +17,10 @@ for argument in "$@"; do
   esac
 done
 
+# Named as Debian names them; scripts/packages.txt gives each one's name on Ubuntu and Homebrew.
+# git, python3, ImageMagick, xdotool, Xvfb and bubblewrap: the scripts and tests call them.
 packages=(
-  build-essential ccache cmake pkg-config clang-format python3 glslang-tools
+  build-essential ccache cmake make pkg-config clang-format python3 git xz-utils glslang-tools
   libglfw3-dev libglew-dev libglm-dev libimgui-dev libstb-dev libosmesa6-dev libegl-dev
   libopengl-dev libegl-mesa0
   libcli11-dev libgtest-dev libbenchmark-dev
@@ -31,6 +34,24 @@ if [ "$with_web" = 1 ]; then
 fi
 "$root/scripts/install-packages.sh" "${packages[@]}"
 
-jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE="$build_type"
+# Dear ImGui and stb where the system has no package of them (Homebrew has neither; an older
+# Ubuntu may lack them): their sources, once, into build-deps/. That version of Dear ImGui is one
+# the code was compiled against (docs/platforms.md).
+options=()
+deps=$root/build-deps
+if ! pkg-config --exists imgui 2>/dev/null; then
+  if [ ! -f "$deps/imgui/imgui.cpp" ]; then
+    git clone -q --depth 1 --branch v1.92.2b https://github.com/ocornut/imgui "$deps/imgui"
+  fi
+  options+=(-DCLOTHLAB_IMGUI_DIR="$deps/imgui")
+fi
+if ! pkg-config --exists stb 2>/dev/null; then
+  if [ ! -f "$deps/stb/stb_image.h" ]; then
+    git clone -q --depth 1 https://github.com/nothings/stb "$deps/stb"
+  fi
+  options+=(-DCLOTHLAB_STB_DIR="$deps/stb")
+fi
+
+jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE="$build_type" ${options[@]+"${options[@]}"}
 cmake --build "$root/build" -j "$jobs"
