@@ -26,7 +26,6 @@ packages=(
   libcli11-dev libgtest-dev libbenchmark-dev
   libgl1-mesa-dri xvfb xauth xdotool imagemagick
   bubblewrap  # the grader's sandbox: tests without network, on a read-only file system
-  git  # the student copy lists its files with it; the grader's test makes repositories
 )
 
 if [ "$with_web" = 1 ]; then
