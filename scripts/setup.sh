@@ -18,9 +18,10 @@ for argument in "$@"; do
 done
 
 # Named as Debian names them; scripts/packages.txt gives each one's name on Ubuntu and Homebrew.
-# git, python3, ImageMagick, xdotool, Xvfb and bubblewrap: the scripts and tests call them.
+# git, python3 (and PyYAML, for the workflow's test), ImageMagick, xdotool, Xvfb and bubblewrap: the scripts and tests call them.
 packages=(
-  build-essential ccache cmake make pkg-config clang-format python3 git xz-utils glslang-tools
+  build-essential ccache cmake make pkg-config clang-format python3 python3-yaml git xz-utils
+  glslang-tools
   libglfw3-dev libglew-dev libglm-dev libimgui-dev libstb-dev libosmesa6-dev libegl-dev
   libopengl-dev libegl-mesa0
   libcli11-dev libgtest-dev libbenchmark-dev
