@@ -1562,8 +1562,8 @@ TEST_F(cli, ShaderErrorsNameTheFileAndLineThatHoldThem) {
     const long line = std::count(text.begin(), text.end(), '\n') + 1;
     std::ofstream(data / "shaders" / broken, std::ios::app)
         << "float broken_line() { return undeclared_name; }\n";
-    spawn_settings how{clothlab_command({"--headless", "--gl", "osmesa", "--backend", "gpu", "--N",
-                                         "4", "--steps", "1"}),
+    spawn_settings how{clothlab_command({"--headless", "--gl", own_context, "--backend", "gpu",
+                                         "--N", "4", "--steps", "1"}),
                        work()};
     how.environment = {"CLOTHLAB_DATA_DIR=" + data.string()};
     const ended result = wait_for(spawn(how), work());
