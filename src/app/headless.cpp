@@ -268,7 +268,7 @@ int run_stage(const options& o, run_outputs& out) {
   return exit_failure;
 }
 
-// Ends the run within a second of a stop signal whatever is in progress (issue 22): a step of
+// Ends the run within a second of a stop signal whatever is in progress: a step of
 // a large cloth (the implicit scheme at N = 1024 takes a second), a batch of GPU steps, the PNG.
 // stop_grace after the signal, if the step loop has not seen it, the watchdog takes the
 // outputs (waiting at most stop_grace more for a write in progress to let them go), puts the CSVs

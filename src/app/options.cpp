@@ -247,6 +247,23 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       option->default_str(format_number(target));
     return option;
   };
+  // Whole numbers are read in decimal, as a user types them: CLI11 alone would read "010" as
+  // octal (8) and "0x10" as hexadecimal (16). Leading zeros are dropped; a base prefix is refused.
+  const CLI::Validator decimal(
+      [](std::string& text) {
+        const std::size_t sign = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
+        const std::size_t first = text.find_first_not_of('0', sign);
+        if (first != std::string::npos && first > sign && std::isalpha(text[first]))
+          return "INTEGER " + text + ": must be written in decimal digits";
+        if (text.find_first_not_of("0123456789", sign) != std::string::npos)
+          return std::string();  // not a whole number: the conversion says so
+        if (first == std::string::npos)
+          text = "0";
+        else
+          text = text.substr(0, sign) + text.substr(first);
+        return std::string();
+      },
+      "");
   app.add_flag("--headless", o.headless, "Run without a window");
   app.add_option("--frames", o.frames, "Window: run COUNT frames, print the mean frame time, exit")
       ->check(CLI::Validator(
@@ -258,7 +275,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
             return whole && count >= 1 ? std::string()
                                        : "COUNT " + text + ": must be a whole number of at least 1";
           },
-          "COUNT >= 1"));
+          "COUNT >= 1"))
+      ->transform(decimal);
   app.add_option("--stage", stage, "spring | coupled | cloth (default cloth)")
       ->check(CLI::IsMember(stages));
   // BEGIN TEACHER
@@ -266,7 +284,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
                  "cpu (default, the lab's code) | cpu-parallel | gpu (fragment shaders) | "
                  "gpu-compute: the cloth's simulation path")
       ->check(CLI::IsMember(backends));
-  app.add_option("--threads", o.threads, "cpu-parallel: threads (default: all cores)");
+  app.add_option("--threads", o.threads, "cpu-parallel: threads (default: all cores)")
+      ->transform(decimal);
   // END TEACHER
   // COPY| app.add_option("--backend", backend,
   // COPY|                "cpu (default, the lab's code) | gpu (fragment shaders): the cloth's path")
@@ -281,7 +300,7 @@ parse_result parse_command_line(int argc, const char* const* argv) {
          "--integrator", integrator,
          "semi-implicit (default) | explicit | verlet | rk4 | implicit (GPU: the first two)")
       ->check(CLI::IsMember(integrators));
-  app.add_option("--steps", o.steps, "Steps to run, headless (default 1000)");
+  app.add_option("--steps", o.steps, "Steps to run, headless (default 1000)")->transform(decimal);
   auto* dt_option = add_number("--dt", dt, "Step length, s (spring 0.01, cloth 0.002)", false);
   auto* k_option = add_number("--K", stiffness, "Stiffness of the spring stages, N/m (20)", false);
   add_number("--K-struct", cloth.structural_stiffness, "Cloth structural stiffness, N/m");
@@ -297,8 +316,11 @@ parse_result parse_command_line(int argc, const char* const* argv) {
                  "Single spring: 3d (default, v1 = (1,-1,0)) | 1d (v1 along the spring)")
       ->check(CLI::IsMember({"3d", "1d"}));
   app.add_option("--chain", o.coupled.mass_count, "Moving masses of the coupled stage")
-      ->capture_default_str();
-  app.add_option("--N", cloth.grid_size, "Cloth grid size: N x N particles")->capture_default_str();
+      ->capture_default_str()
+      ->transform(decimal);
+  app.add_option("--N", cloth.grid_size, "Cloth grid size: N x N particles")
+      ->capture_default_str()
+      ->transform(decimal);
   add_number("--size", cloth.side_length, "Cloth side length, m");
   app.add_option("--pins", pin_choice, "corners (default) | none")->check(CLI::IsMember(pins));
   add_number("--wind-strength", cloth.wind_strength, "Wind strength K_w, N");
@@ -306,11 +328,12 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   auto* ground_option = app.add_option("--ground-z", ground_z, "Ground height, m, or none (-1)");
   add_number("--ground-friction", cloth.ground_friction, "Ground friction rate mu_g, 1/s");
   app.add_option("--csv", o.csv_path, "Write the particles' states to this CSV file");
-  app.add_option("--csv-every", o.csv_every, "Write every K-th step (default 1)");
+  app.add_option("--csv-every", o.csv_every, "Write every K-th step (default 1)")
+      ->transform(decimal);
   app.add_option("--obj", o.obj_path, "Write the final cloth as a Wavefront OBJ");
   app.add_option("--png", o.png_path, "Render the final state off-screen to this PNG");
-  app.add_option("--width", o.width, "PNG width, px (800)");
-  app.add_option("--height", o.height, "PNG height, px (600)");
+  app.add_option("--width", o.width, "PNG width, px (800)")->transform(decimal);
+  app.add_option("--height", o.height, "PNG height, px (600)")->transform(decimal);
   app.add_option("--energy-csv", o.energy_csv_path,
                  "Write step,t,kinetic,gravity,spring,total (every --csv-every steps)");
   app.add_option("--scaling", scaling,
@@ -318,7 +341,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
       ->check(CLI::IsMember(scalings));
   app.add_option("--reference-N", cloth.reference_grid_size,
                  "Grid whose particles have --mass and springs the K (resolution-independent)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->transform(decimal);
   app.add_option(
       "--sweep", o.sweep_path,
       "Stability map: run every (dt, K or N) cell, write dt,K,N,integrator,diverged,step");

@@ -17,7 +17,7 @@ inline constexpr int exit_failure = 1;
 inline constexpr int exit_usage = 2;
 inline constexpr int exit_diverged = 3;
 
-// SIGINT, SIGTERM, SIGHUP (issues 12 and 22): the handler only records the first signal; the
+// SIGINT, SIGTERM, SIGHUP: the handler only records the first signal; the
 // step loop sees it after the step in progress, writes nothing more, closes the files (whole
 // lines, renamed into place) and exits with 128 + the signal's number (130, 143, 129). A step
 // that does not end within stop_grace of the signal is abandoned (stop_watchdog, headless.cpp). A

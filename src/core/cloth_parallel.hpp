@@ -1,4 +1,4 @@
-// The fast CPU path of the cloth (--backend cpu-parallel, issue 9): the model of spring_mesh
+// The fast CPU path of the cloth (--backend cpu-parallel): the model of spring_mesh
 // (docs/model.md), in double precision, on flat arrays of structure-of-arrays layout, threaded
 // with OpenMP over the rows of the grid and written so that the compiler vectorises the inner
 // loops (sqrt included: this file is compiled with -fno-math-errno; AVX2 or AVX-512 chosen at

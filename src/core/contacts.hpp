@@ -32,7 +32,7 @@ void apply_sphere_contact(const sphere_parameters& sphere, double time_step,
 // (cloth_parameters::self_collision_thickness), clamped to the shortest rest length, the
 // structural h = side / (N - 1). A larger d would reach grid neighbours that the springs already
 // keep apart, and let one cell of the hash below hold a crowd of particles: the work per step
-// would grow as (d / h)^3 particles per cell (issue 22). Both CPU paths call apply() with it.
+// would grow as (d / h)^3 particles per cell. Both CPU paths call apply() with it.
 double self_collision_distance(const cloth_parameters& p);
 
 class self_collision {

@@ -1,4 +1,4 @@
-// The mechanical energy of a stage (issue 5): what each integrator does with it shows its
+// The mechanical energy of a stage: what each integrator does with it shows its
 // character. Without damping the exact motion keeps the total constant; explicit Euler makes it
 // grow, the symplectic schemes (semi-implicit Euler, Verlet) keep it within a bounded
 // oscillation, and the implicit scheme makes it decay.

@@ -33,7 +33,7 @@ bool write_obj(const std::string& path, int n, const particle_system& particles,
 // writer that does not report a failed write (stb's) leaves a file that fails this.
 bool png_file_is_whole(const std::string& path);
 
-// An output file written whole or not at all (issue 12). The data go to a temporary file
+// An output file written whole or not at all. The data go to a temporary file
 // beside the target, ".NAME.XXXXXX" in the same folder, and commit() renames it over the
 // target: a reader, or a second run writing the same file at the same time, sees the old file
 // or a whole new one (the last rename wins), never a part; on failure the temporary file is

@@ -1,4 +1,4 @@
-// The stability explorer (issue 5): a map of stable and diverged runs over a grid of time steps
+// The stability explorer: a map of stable and diverged runs over a grid of time steps
 // dt against stiffnesses K (or grid sizes N), for one stage and one integrator, with the
 // theoretical limit of every cell (stability.hpp) to draw over it.
 #pragma once

@@ -1,4 +1,4 @@
-// The EGL implementation of the off-screen gl_context (issue 9): an OpenGL core context on an
+// The EGL implementation of the off-screen gl_context: an OpenGL core context on an
 // EGL device (a real GPU through its driver, or Mesa's software device), or on Mesa's
 // surfaceless platform when the driver lists no device, rendering into a pbuffer of the given
 // size. Only compiled into the EGL build of the GL code (clothlab-egl), linked with glvnd's

@@ -394,6 +394,19 @@ TEST_F(cli, CsvEveryWritesEveryKthStepPlusTheFirstAndTheLast) {
   }
 }
 
+// Whole numbers are decimal, as typed: a leading zero is not octal ("--steps 010" runs ten steps
+// of a chain of ten masses, "--csv-every 03" writes every third), and a base prefix is refused.
+TEST_F(cli, WholeNumbersAreDecimalWhateverTheirLeadingZeros) {
+  const run_result result = run({"--headless", "--stage", "coupled", "--chain", "010", "--steps",
+                                 "010", "--csv-every", "03", "--csv", "c.csv"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(written_steps(read_csv(work() / "c.csv"), 11), (std::vector<long>{0, 3, 6, 9, 10}));
+  const run_result hexadecimal = run({"--headless", "--stage", "coupled", "--steps", "0x10"});
+  EXPECT_EQ(hexadecimal.exit_code, 2) << hexadecimal.err;
+  EXPECT_NE(hexadecimal.err.find("--steps"), std::string::npos) << hexadecimal.err;
+  EXPECT_NE(hexadecimal.err.find("0x10"), std::string::npos) << hexadecimal.err;
+}
+
 // When the last step is itself a multiple of K it is written once.
 TEST_F(cli, CsvEveryWritesALastStepThatIsAMultipleOfKOnce) {
   const run_result result = run(

@@ -11,8 +11,7 @@ copy's README.md, docs/*.md and the header comments of test.sh and run.sh may no
 - a note to the developers: an issue number, "What the README should change".
 Each hit is listed with its file and line.
 """
-import importlib.machinery
-import importlib.util
+import json
 import re
 import shutil
 import subprocess
@@ -25,18 +24,14 @@ from pathlib import Path
 LEFT_OUT = ("docs/answers.md", "docs/teaching.md", "scripts/make-student-version",
             "scripts/mutate-grader", "scripts/grade", "scripts/grade-benchmark",
             "scripts/benchmark-web", "shaders/gpu_compute_step.comp", "tests/student_copy",
-            "tests/model", "tests/mutation", "tests/grade", "tests/web", "grading/")
+            "tests/model", "tests/mutation", "tests/grade", "tests/web", "grading/gradescope/")
 NOTES = re.compile(r"\b[Ii]ssues? \d+|What the README should change")
 
 
 def generator_lists(root):
-    """TEACHER_FILES and TEACHER_FOLDERS of the teacher's scripts/make-student-version."""
-    path = root / "scripts/make-student-version"
-    loader = importlib.machinery.SourceFileLoader("make_student_version", str(path))
-    spec = importlib.util.spec_from_loader(loader.name, loader)
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return tuple(module.TEACHER_FILES) + tuple(module.TEACHER_FOLDERS)
+    """The teacher's files and folders that the lab's manifest (grading/lab.json) names."""
+    lab = json.loads((root / "grading/lab.json").read_text())
+    return tuple(lab.get("teacher_files", ())) + tuple(lab.get("teacher_folders", ()))
 
 
 def header_comment(path):

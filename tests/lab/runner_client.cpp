@@ -324,8 +324,9 @@ bool runner::start(std::string& error) {
   argv.push_back(nullptr);
 
   int pair[2], out[2];
-  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, pair) != 0 ||
-      ::pipe2(out, O_CLOEXEC) != 0) {
+  // Plain socketpair and pipe (POSIX: macOS has neither SOCK_CLOEXEC nor pipe2); high_fd moves
+  // each end at once to a close-on-exec descriptor.
+  if (::socketpair(AF_UNIX, SOCK_STREAM, 0, pair) != 0 || ::pipe(out) != 0) {
     error = std::string("no socket or pipe: ") + std::strerror(errno);
     return false;
   }

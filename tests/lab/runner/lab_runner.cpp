@@ -6,7 +6,9 @@
 // It is started with its requests and answers on fd 3; its standard output and error (the
 // student's prints) are a pipe the checker reads apart. It ends when fd 3 closes.
 #include <fcntl.h>
+#if defined(__linux__)
 #include <sys/prctl.h>
+#endif
 #include <unistd.h>
 
 #include <cerrno>
@@ -239,8 +241,10 @@ int main() {
                  fd);
     return 2;
   }
-  ::fcntl(fd, F_SETFD, FD_CLOEXEC);    // not handed to a program the student's code starts
+  ::fcntl(fd, F_SETFD, FD_CLOEXEC);  // not handed to a program the student's code starts
+#if defined(__linux__)
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // ends with the checker that started it
+#endif
   std::signal(SIGPIPE, SIG_DFL);
 
   objects o;
