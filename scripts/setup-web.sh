@@ -36,10 +36,13 @@ imgui_dir=$web/deps/imgui-${upstream%+*}
 if [ ! -f "$imgui_dir/imgui.cpp" ]; then
   codename=$(. /etc/os-release && echo "$VERSION_CODENAME")
   # The mirror of this machine's own Debian release, main component (apt's index targets name
-  # it, whatever the format of the machine's sources lists).
-  mirror=$(apt-get indextargets --format '$(REPO_URI) $(RELEASE) $(COMPONENT)' \
-             'Identifier: Packages' | awk -v c="$codename" '$2 == c && $3 == "main" {print $1; exit}')
-  if [ -z "$mirror" ]; then
+  # it, whatever the format of the machine's sources lists). Debian unstable's os-release names
+  # the next release (its sources say sid): then the first main component listed.
+  read -r mirror suite < <(apt-get indextargets --format '$(REPO_URI) $(RELEASE) $(COMPONENT)' \
+      'Identifier: Packages' | awk -v c="$codename" '$3 == "main" && $2 == c {print $1, $2; found = 1; exit}
+        $3 == "main" && first == "" {first = $1 " " $2}
+        END {if (!found && first != "") print first}') || true
+  if [ -z "${mirror:-}" ]; then
     echo "clothlab: no Debian mirror for $codename main in this machine's apt sources:" \
          "cannot fetch Dear ImGui's sources (apt-get source imgui)" >&2
     exit 1
@@ -47,7 +50,7 @@ if [ ! -f "$imgui_dir/imgui.cpp" ]; then
   fetch=$web/deps/apt
   rm -rf "$fetch"
   mkdir -p "$fetch/lists/partial"
-  echo "deb-src $mirror $codename main" >"$fetch/sources.list"
+  echo "deb-src $mirror $suite main" >"$fetch/sources.list"
   apt_options=(-o "Dir::Etc::SourceList=$fetch/sources.list" -o Dir::Etc::SourceParts=/dev/null
                -o "Dir::State::Lists=$fetch/lists" -o APT::Sandbox::User=root)
   echo "clothlab: fetching Dear ImGui's sources (Debian source package imgui $imgui_version" \

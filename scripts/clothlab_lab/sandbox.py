@@ -264,7 +264,10 @@ class Sandbox:
         finally:
             self.kind = "none"
         if tried.returncode != 0:
-            return tried.stderr.strip()[:200] or f"exit status {tried.returncode}"
+            # Its first sentence: bwrap goes on with a link to its README, which has no place
+            # in a report that links nowhere.
+            said = tried.stderr.strip().split(". ")[0][:200]
+            return said or f"exit status {tried.returncode}"
         return None
 
     def limit(self, cpu_seconds, file_size):

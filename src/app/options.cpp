@@ -252,6 +252,8 @@ parse_result parse_command_line(int argc, const char* const* argv) {
   const CLI::Validator decimal(
       [](std::string& text) {
         const std::size_t sign = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
+        if (text.size() == sign)
+          return std::string();  // nothing to read: the conversion says so
         const std::size_t first = text.find_first_not_of('0', sign);
         if (first != std::string::npos && first > sign && std::isalpha(text[first]))
           return "INTEGER " + text + ": must be written in decimal digits";

@@ -254,7 +254,24 @@ def main():
         print(graded.stdout + graded.stderr[-8000:])
         if not check(graded.returncode == 0, "scripts/grade failed on the hostile class"):
             return 1
-        check("bubblewrap:" in graded.stderr, "the grader did not use bubblewrap here")
+        # Where bubblewrap cannot run (a chroot, Docker's seccomp), the grader falls back to an
+        # unprivileged user without namespaces: a host socket that any user can reach, and the
+        # paths of the scratch, are then within the submission's reach (docs/teaching.md, the
+        # threat model). Those checks are reported, not required, there; every other one is.
+        namespaces = "bubblewrap:" in graded.stderr
+        if not namespaces:
+            check("bubblewrap cannot run here" in graded.stderr,
+                  "the grader did not use bubblewrap, and did not say why")
+            print("KNOWN (fallback, no namespaces here): a host socket that any user can reach, "
+                  "and the scratch's paths, are not hidden from a submission")
+
+        def check_with_namespaces(condition, message):
+            if namespaces:
+                return check(condition, message)
+            if not condition:
+                print(f"KNOWN (fallback): {message}")
+            return True
+
         names = {p.name: json.loads((p / "results.json").read_text()) for p in out.iterdir()
                  if (p / "results.json").is_file()}
         print("graded:", ", ".join(f"{n} {r['score']:g}" for n, r in sorted(names.items())))
@@ -271,8 +288,9 @@ def main():
                                        f"{score(honest)}: {names.get(honest, {}).get('output')}")
         for eve in ("eve-reads", "eve-has-include", "eve-incbin", "eve-socket", "eve-forks",
                     "eve-filler", "eve-zipbomb", "eve-entries", "@SUM_1_1", "-2_3"):
-            check(score(eve) == 0, f"{eve} should earn nothing, got {score(eve)}: "
-                                   f"{q5(eve).get('output', '')[:800]}")
+            (check_with_namespaces if eve == "eve-socket" else check)(
+                score(eve) == 0,
+                f"{eve} should earn nothing, got {score(eve)}: {q5(eve).get('output', '')[:800]}")
         answers_line = next(line for line in (root / "docs/answers.md").read_text().splitlines()
                             if len(line.strip()) > 20)
         everything = "\n".join((p / "results.json").read_text() for p in out.iterdir()
@@ -284,10 +302,11 @@ def main():
               "outputs")
         others = "\n".join((p / "results.json").read_text() for p in out.iterdir()
                            if p.is_dir() and p.name != "eve-incbin")  # (its own line quotes it)
-        check(str(root) not in others and "/var/tmp/clothlab-grade" not in everything and
-              str(kit) not in everything, "the teacher's or the grader's paths are in the outputs")
-        check(listener.connections == 0, f"the host's socket was reached "
-                                         f"{listener.connections} times")
+        check(str(root) not in others, "the teacher's tree's path is in the outputs")
+        check_with_namespaces("/var/tmp/clothlab-grade" not in everything and
+                              str(kit) not in everything, "the grader's paths are in the outputs")
+        check_with_namespaces(listener.connections == 0, f"the host's socket was reached "
+                                                         f"{listener.connections} times")
         check(not (outside / "smudged").exists() and not (outside / "hooked").exists(),
               "the bare repository's smudge filter or hook ran")
         check("BROKEN" not in json.dumps(names.get("eve-smudge", {})),
