@@ -299,19 +299,7 @@ class Sandbox:
             stdin=subprocess.DEVNULL,
             preexec_fn=self.limit(cpu_seconds or seconds + 2, file_size or
                                   self.limits.file_size))
-        try:
-            code = process.wait(timeout=seconds)
-            timed_out = False
-        except subprocess.TimeoutExpired:
-            code, timed_out = None, True
-        try:
-            os.killpg(process.pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
-        if code is None:
-            code = process.wait()
-        return code, timed_out
-
+        return wait_then_end(process, seconds)
 
     def run_outside(self, argv, seconds, env, stdout, cwd=None, file_size=None):
         """Runs a program of the teacher's (a checker) as the grader, out of the sandbox but
@@ -322,17 +310,23 @@ class Sandbox:
             [str(a) for a in argv], cwd=cwd, env=env, stdout=stdout, stderr=subprocess.STDOUT,
             stdin=subprocess.DEVNULL,
             preexec_fn=self.limit(seconds + 2, file_size or self.limits.file_size))
-        try:
-            code, timed_out = process.wait(timeout=seconds), False
-        except subprocess.TimeoutExpired:
-            code, timed_out = None, True
-        try:
-            os.killpg(process.pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
-        if code is None:
-            code = process.wait()
-        return code, timed_out
+        return wait_then_end(process, seconds)
+
+
+def wait_then_end(process, seconds):
+    """(exit status, timed out) of a process started in a session of its own, waited for at most
+    `seconds`; its whole process group is killed either way."""
+    try:
+        code, timed_out = process.wait(timeout=seconds), False
+    except subprocess.TimeoutExpired:
+        code, timed_out = None, True
+    try:
+        os.killpg(process.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    if code is None:
+        code = process.wait()
+    return code, timed_out
 
 
 def bubblewrap_words(scratch, readable, chdir, tmp_bytes):
