@@ -345,7 +345,9 @@ grab_and_pull() {  # [SECONDS the pull is held after the mouse stops; 2 by defau
   to=$(vector_after "at" "$released")
   moved=$(awk -v a="$from" -v b="$to" 'BEGIN { split(a, p); split(b, q)
     print sqrt((p[1] - q[1]) ^ 2 + (p[2] - q[2]) ^ 2 + (p[3] - q[3]) ^ 2) }')
-  awk -v m="$moved" 'BEGIN { exit !(m > 0.1) }' ||
+  # (min_move: the rip releases as soon as the cloth tears, which under load can be a few steps
+  # after the yank: there the torn springs are the evidence of the pull.)
+  awk -v m="$moved" -v least="${min_move:-0.1}" 'BEGIN { exit !(m > least) }' ||
     fail "the grabbed particle moved only $moved m (from $from to $to)"
   echo "window test: $grabbed" >&2
   echo "window test: $released; moved $moved m, camera still at $(camera_at ended)" >&2
@@ -384,11 +386,7 @@ case "$scenario" in
       fail "$shot shows no banner over the scene (dark fraction $dark)"
     echo "window test: the banner covers $dark of the scene"
     press r  # back in view: the banner goes, and comes again when it falls out once more
-    for _ in $(seq 40); do
-      [ "$(grep -c "fell out of view" window.log)" -ge 2 ] && break
-      sleep 0.25
-    done
-    [ "$(grep -c "fell out of view" window.log)" -ge 2 ] || fail "after R the cloth did not fall out of view again"
+    wait_for_new_log "fell out of view" 1 || fail "after R the cloth did not fall out of view again"
     ;;
   spring_plot)
     # Question 2's x(t) plot has a sample of every step: the frames that a screenshot stalls
@@ -424,7 +422,7 @@ case "$scenario" in
     # equilibrium short of the strain, depending on the particle grabbed), then the button is
     # held until the window says the cloth tore (at most 40 s: under load the window runs far
     # fewer steps a second).
-    released=$(pull_moves=1 grab_and_pull 40 "the cloth began to tear")
+    released=$(pull_moves=1 min_move=0 grab_and_pull 40 "the cloth began to tear")
     springs=$(springs_in "$released")
     [ "$springs" -lt "$whole_cloth_springs" ] ||
       fail "pulling the light cloth with tearing on tore no spring ($springs springs)"
@@ -565,11 +563,7 @@ case "$scenario" in
     # Nothing is drawn for the diverged stage: the panel (with its red message) on the background.
     check_image "$(screenshot_of spring)" 1280 800 20
     press r  # reset: the run starts again, and diverges again
-    for _ in $(seq 40); do
-      [ "$(grep -c "diverged at step" window.log)" -ge 2 ] && break
-      sleep 0.25
-    done
-    [ "$(grep -c "diverged at step" window.log)" -ge 2 ] || fail "R did not restart the run"
+    wait_for_new_log "diverged at step" 1 || fail "R did not restart the run"
     check_steady_panel spring 2  # running, then diverged: the slider did not move
     ;;
   gpu_switch)
