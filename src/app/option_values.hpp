@@ -13,6 +13,16 @@
 
 namespace clothlab {
 
+// The texts CLI11 reads, before they are checked and converted. Real numbers are read as text
+// and converted by parse_number, so that "1e-320", "inf" and "1e999" mean the same whatever the
+// option (docs/limits.md); whole numbers by CLI11, in decimal (below).
+struct given_values {
+  std::string stage = "cloth", backend = "cpu", gl = "auto", integrator, start, pins, ground_z;
+  std::string wind_dir, scaling, sweep_dt, sweep_k, sweep_n, sweep_time, drag, sphere;
+  std::vector<std::string> real_parameters = std::vector<std::string>(parameter_table.size());
+  std::vector<int> whole_parameters = std::vector<int>(parameter_table.size());
+};
+
 // A usage error: the option and what is wrong with its value (exit status 2).
 struct usage_error {
   std::string message;
