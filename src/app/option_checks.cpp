@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <vector>
 
 #include "core/cloth_parallel.hpp"
 
@@ -113,8 +114,13 @@ void check_combinations(const options& o, const given_values& values, const give
   if (given("--threads") && o.backend != cloth_backend::cpu_parallel)
     throw usage_error{"--threads: only with --backend cpu-parallel"};
   if (o.stage != stage_kind::cloth) {
-    for (const auto* option :
-         {"--drag", "--sphere", "--sphere-friction", "--tear-strain", "--self-collision"}) {
+    // The cloth's additions: --drag, --sphere and the table's (--sphere-friction, ...).
+    std::vector<std::string_view> additions = {"--drag", "--sphere"};
+    for (const parameter& p : parameter_table) {
+      if (p.scope == parameter_scope::cloth_addition)
+        additions.push_back(p.option);
+    }
+    for (const std::string_view option : additions) {
       if (given(option))
         throw usage_error{std::string(option) + ": the cloth's; use it with --stage cloth"};
     }
