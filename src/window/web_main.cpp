@@ -201,6 +201,8 @@ int main() {
   }
   glfwSetScrollCallback(page.context->window(), on_browser_wheel);
 #if IMGUI_VERSION_NUM >= 18930
+  // (A registration adds a listener: Dear ImGui's is removed first.)
+  emscripten_set_wheel_callback(EMSCRIPTEN_EVENT_TARGET_DOCUMENT, nullptr, false, nullptr);
   emscripten_set_wheel_callback(EMSCRIPTEN_EVENT_TARGET_DOCUMENT, nullptr, false,
                                 on_document_wheel);
 #endif
