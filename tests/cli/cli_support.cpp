@@ -1,5 +1,7 @@
 #include "cli_support.hpp"
 
+#include <algorithm>
+
 namespace clothlab_cli_test {
 
 std::string read_file(const fs::path& path) {
@@ -15,6 +17,17 @@ std::string join(const arguments& args) {
     line += " " + arg;
   }
   return line;
+}
+
+std::string names_in(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  std::string line;
+  for (const std::string& name : names)
+    line += (line.empty() ? "" : " ") + name;
+  return line.empty() ? "nothing" : line;
 }
 
 bool has_option(const arguments& args, const std::string& option) {
@@ -118,11 +131,13 @@ pid_t spawn(const spawn_settings& how) {
       _exit(126);
     for (const std::string& variable : how.environment)
       putenv(const_cast<char*>(variable.c_str()));
-    if (how.block_sigint) {
+    if (how.block_sigint || how.sigint_pending) {
       sigset_t set;
       sigemptyset(&set);
       sigaddset(&set, SIGINT);
       sigprocmask(SIG_BLOCK, &set, nullptr);
+      if (how.sigint_pending)
+        raise(SIGINT);
     }
     // A failure here says why on the child's standard error (the test prints it).
     const auto fail = [](const char* what, int status) {

@@ -65,6 +65,9 @@ std::string read_file(const fs::path& path);
 
 std::string join(const arguments& args);
 
+// The names of what a folder holds, for a failure's message: "s.csv s.obj", or "nothing".
+std::string names_in(const fs::path& folder);
+
 // A fresh directory per test: clothlab runs in <root>/work (which must otherwise stay empty when
 // it writes nothing); its standard output and error go to files beside it.
 class cli : public ::testing::Test {
@@ -187,9 +190,12 @@ bool temporary_file_left(const fs::path& folder);
 
 // A process started by the tests below, with what they need that cli::start() does not do.
 struct spawn_settings {
-  std::vector<std::string> argv;         // argv[0]: the program
-  fs::path folder;                       // its working folder; stdout and stderr go beside it
-  bool block_sigint = false;             // start it with SIGINT blocked
+  std::vector<std::string> argv;  // argv[0]: the program
+  fs::path folder;                // its working folder; stdout and stderr go beside it
+  bool block_sigint = false;      // start it with SIGINT blocked
+  // Start it with SIGINT blocked and already pending (raised before the exec, which keeps it):
+  // a signal that arrived before any code of clothlab ran, whatever the machine's load.
+  bool sigint_pending = false;
   uid_t user = 0;                        // 0: as the test; else setuid to it (the test is root)
   std::vector<std::string> environment;  // NAME=VALUE added
 
