@@ -87,12 +87,13 @@ void on_browser_wheel(GLFWwindow* window, double x, double y) {
                                 glfw_vertical_wheel_in_notches ? y : browser_delta_to_notches(y));
 }
 
-// From 1.89.3 on, Dear ImGui's GLFW backend takes the panel's wheel from a listener of its own on
-// the document (emscripten's html5 API), not from GLFW's callback, and cancels each event there.
-// Browsers treat a document's wheel listeners as passive: Chromium ignores the cancel and logs a
-// console error at every notch. This listener replaces it, the same deltas in notches (a line is
-// a third of a notch, a pixel a hundredth, a page 80), and cancels nothing: GLFW's own listener,
-// on the canvas, already keeps the page from scrolling under the window.
+// From 1.89.3 on, Dear ImGui's GLFW backend ignores GLFW's wheel in a browser and takes the
+// panel's from a wheel listener on the document (emscripten's html5 API) that cancels each event
+// (Debian 13's 1.90): browsers treat a document's wheel listeners as passive, so Chromium ignores
+// the cancel and logs a console error at every notch. This listener takes its place: the same
+// deltas in notches (a line is a third of a notch, a pixel a hundredth, a page 80), and it
+// cancels nothing: GLFW's listener on the canvas already keeps the page from scrolling under the
+// window. (tests/web checks that the wheel scrolls the panel and that the console stays clean.)
 #if IMGUI_VERSION_NUM >= 18930
 float dom_delta_to_notches(double delta, unsigned long mode) {
   const double per_unit = mode == DOM_DELTA_LINE ? 1.0 / 3.0 : mode == DOM_DELTA_PAGE ? 80.0 : 0.01;

@@ -14,8 +14,8 @@ Checks, in order, each waiting for the page (never for a fixed time):
      of the panel) matches tests/web/reference/initial_cloth.png within a tolerance, and is
      neither blank nor NaN-coloured;
   6. P downloads a PNG of the canvas's size, with the scene in it;
-  7. the mouse: one notch of the wheel zooms in by the window's step; a drag on the sky orbits
-     the view, a drag that starts on the cloth grabs it;
+  7. the mouse: one notch of the wheel zooms in by the window's step, the wheel over the panel
+     scrolls it; a drag on the sky orbits the view, a drag that starts on the cloth grabs it;
   8. still no error on the console (the page's and the browser's, WebGL's warnings included).
 Exit status 0 when all pass, 1 at the first failure (what failed, in a sentence), 2 for bad
 usage. --out DIR keeps the screenshots; --update-reference rewrites the reference from this run
@@ -35,6 +35,9 @@ width, height = 1280, 800
 bar_height = 22  # web/index.html: the status bar under the canvas
 # The scene, right of the panel (410 px wide at the default font) and inside the canvas.
 scene_box = (430, 10, width - 440, height - bar_height - 20)  # left, top, width, height
+# The panel, left of the scene, and a point on it (its sections, below the readouts).
+panel_box = (0, 0, 410, height - bar_height)
+panel_point = (200, 500)
 # A point of the initial cloth, in page pixels (tests/web/reference/initial_cloth.png, plus
 # scene_box's corner).
 cloth_point = (430 + 520, 10 + 255)
@@ -154,6 +157,49 @@ def check_wheel(page, before):
         raise failure(f"one notch of the wheel made the cloth cover {ratio:.2f} times as many "
                       "pixels (a zoom of 1/0.9 gives about 1.23)")
     print(f"ok: one notch of the wheel zooms in (the cloth covers {ratio:.2f} x the pixels)")
+
+
+def differing_fraction(a, b):
+    """The fraction of the pixels of two images of one size that differ by more than
+    `tolerance` in a channel."""
+    count = len(a.pixels) // 3
+    differing = sum(1 for i in range(0, len(a.pixels), 3)
+                    if max(abs(a.pixels[i + c] - b.pixels[i + c]) for c in range(3)) > tolerance)
+    return differing / count
+
+
+def check_panel_wheel(page):
+    """The wheel over the panel scrolls the panel (Dear ImGui takes it from the page's own
+    listener, web_main.cpp): a notch away from the user moves its sections up. Its live
+    numbers change from frame to frame too, so the scroll must change many times more pixels
+    than two frames without it do."""
+    def panel():
+        return page.screenshot().crop(*panel_box)
+
+    def after_frames(count):
+        frames = page.run("return window.clothlab.frames")
+        page.wait_for(f"return window.clothlab.frames >= {frames + count}", "the next frames", 60)
+
+    page._call("POST", page._session + "/actions", {"actions": [
+        {"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"},
+         "actions": [{"type": "pointerMove", "duration": 0, "x": panel_point[0],
+                      "y": panel_point[1]}]}]})
+    after_frames(3)
+    first = panel()
+    after_frames(3)
+    still = differing_fraction(first, panel())
+    page._call("POST", page._session + "/actions", {"actions": [
+        {"type": "wheel", "id": "wheel", "actions": [
+            {"type": "scroll", "x": panel_point[0], "y": panel_point[1], "deltaX": 0,
+             "deltaY": 300, "duration": 0}]}]})
+    after_frames(3)
+    scrolled = differing_fraction(first, panel())
+    if scrolled < max(0.05, 5 * still):
+        raise failure(f"three notches of the wheel over the panel changed {100 * scrolled:.1f}% of "
+                      f"its pixels, no more than its own numbers do ({100 * still:.1f}% between two "
+                      "frames): the panel did not scroll")
+    print(f"ok: the wheel scrolls the panel ({100 * scrolled:.0f}% of its pixels change, "
+          f"{100 * still:.1f}% without it)")
 
 
 def drag(page, start, end, shift=False):
@@ -286,6 +332,7 @@ def main():
                   f"{100 * max_differing_fraction:.0f}% may)")
             check_screenshot_key(page, args.out)
             check_wheel(page, scene)
+            check_panel_wheel(page)
             check_mouse(page, seen)
             errors = console_errors(page, seen)
             if errors:
