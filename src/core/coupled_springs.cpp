@@ -78,11 +78,39 @@ void coupled_springs::compute_force(std::span<const double> position,
 }
 
 void coupled_springs::apply_force() {
-  const spring_set sets[] = {{springs_, parameters.stiffness}};
-  const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
-    compute_force(position, force);
-  };
-  integrator_.step(parameters.dynamics, {sets, forces_at}, particles_, spring_stage_key{});
+  const dynamics_parameters& d = parameters.dynamics;
+  if (d.integrator != integrator_kind::semi_implicit &&
+      d.integrator != integrator_kind::explicit_euler) {
+    // The stability lab's other schemes (integrator.hpp), not the handout's.
+    const spring_set sets[] = {{springs_, parameters.stiffness}};
+    const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
+      compute_force(position, force);
+    };
+    integrator_.step(d, {sets, forces_at}, particles_);
+    return;
+  }
+  // Numerical integration: the handout's code of section 2 (question 3), for every mass of the
+  // chain (p0, fixed, never moves), F its force from compute_force, g = (0, 0, -g0).
+  const double dt = d.time_step;                // s
+  const double mu = d.damping;                  // 1/s
+  const double m = d.mass;                      // kg
+  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (particles_.is_fixed[i])
+      continue;
+    const glm::dvec3 F = particles_.get_force(i);
+    glm::dvec3 p = particles_.get_position(i);
+    glm::dvec3 v = particles_.get_velocity(i);
+    if (d.integrator == integrator_kind::semi_implicit) {
+      v = (1.0 - mu * dt) * v + dt * (F / m + g);  // the handout's order: the speed first,
+      p = p + dt * v;                              // then the position with the new speed
+    } else {
+      p = p + dt * v;  // equation 6: the position with the speed at the start of the step
+      v = (1.0 - mu * dt) * v + dt * (F / m + g);
+    }
+    particles_.set_position(i, p);
+    particles_.set_velocity(i, v);
+  }
 }
 
 }  // namespace clothlab

@@ -39,11 +39,35 @@ void single_spring::compute_force(std::span<const double> position, std::span<do
 }
 
 void single_spring::apply_force() {
-  const spring_set sets[] = {{springs_, parameters.stiffness}};
-  const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
-    compute_force(position, force);
-  };
-  integrator_.step(parameters.dynamics, {sets, forces_at}, particles_, spring_stage_key{});
+  const dynamics_parameters& d = parameters.dynamics;
+  if (d.integrator != integrator_kind::semi_implicit &&
+      d.integrator != integrator_kind::explicit_euler) {
+    // The stability lab's other schemes (integrator.hpp), not the handout's.
+    const spring_set sets[] = {{springs_, parameters.stiffness}};
+    const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
+      compute_force(position, force);
+    };
+    integrator_.step(d, {sets, forces_at}, particles_);
+    return;
+  }
+  // Numerical integration: the handout's code of section 2 (question 3), for the mass p1
+  // (p0 is fixed), F the force of compute_force, g = (0, 0, -g0).
+  const double dt = d.time_step;                // s
+  const double mu = d.damping;                  // 1/s
+  const double m = d.mass;                      // kg
+  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
+  const glm::dvec3 F = particles_.get_force(1);
+  glm::dvec3 p1 = particles_.get_position(1);
+  glm::dvec3 v1 = particles_.get_velocity(1);
+  if (d.integrator == integrator_kind::semi_implicit) {
+    v1 = (1.0 - mu * dt) * v1 + dt * (F / m + g);  // the handout's order: the speed first,
+    p1 = p1 + dt * v1;                             // then the position with the new speed
+  } else {
+    p1 = p1 + dt * v1;  // equation 6: the position with the speed at the start of the step
+    v1 = (1.0 - mu * dt) * v1 + dt * (F / m + g);
+  }
+  particles_.set_position(1, p1);
+  particles_.set_velocity(1, v1);
 }
 
 }  // namespace clothlab

@@ -68,6 +68,7 @@ TEST(Drag, DragForceIsKdTimesTargetMinusPosition) {
   cloth.parameters.drag = {
       .enabled = true, .ku = 1, .kv = 1, .target = {0.5, -1, 2}, .stiffness = 40};
   cloth.compute_force();
+  cloth.add_drag_force();
   expect_near(cloth.particles().get_force(4), {20, -40, 80}, 1e-12, "F_d on s(1, 1)");
   expect_near(cloth.particles().get_force(0), {0, 0, 0}, 1e-12, "no drag on s(0, 0)");
 }
@@ -77,6 +78,7 @@ TEST(Drag, APinnedParticleCannotBeDragged) {
   cloth.particles().is_fixed[0] = 1;
   cloth.parameters.drag = {.enabled = true, .ku = 0, .kv = 0, .target = {5, 5, 5}, .stiffness = 40};
   cloth.compute_force();
+  cloth.add_drag_force();
   expect_near(cloth.particles().get_force(0), {0, 0, 0}, 1e-12, "a pinned particle");
 }
 
