@@ -91,10 +91,10 @@ void coupled_springs::apply_force() {
   }
   // Numerical integration: the handout's code of section 2 (question 3), for every mass of the
   // chain (p0, fixed, never moves), F its force from compute_force, g = (0, 0, -g0).
-  const double dt = d.time_step;                // s
-  const double mu = d.damping;                  // 1/s
-  const double m = d.mass;                      // kg
-  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
+  const double dt = d.time_step;                // the time step, s
+  const double mu = d.damping;                  // the damping, 1/s
+  const double m = d.mass;                      // the mass, kg
+  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // gravity, m/s^2
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     if (particles_.is_fixed[i])
       continue;

@@ -52,10 +52,10 @@ void single_spring::apply_force() {
   }
   // Numerical integration: the handout's code of section 2 (question 3), for the mass p1
   // (p0 is fixed), F the force of compute_force, g = (0, 0, -g0).
-  const double dt = d.time_step;                // s
-  const double mu = d.damping;                  // 1/s
-  const double m = d.mass;                      // kg
-  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
+  const double dt = d.time_step;                // the time step, s
+  const double mu = d.damping;                  // the damping, 1/s
+  const double m = d.mass;                      // the mass, kg
+  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // gravity, m/s^2
   const glm::dvec3 F = particles_.get_force(1);
   glm::dvec3 p1 = particles_.get_position(1);
   glm::dvec3 v1 = particles_.get_velocity(1);

@@ -57,7 +57,7 @@ class spring_mesh {
   void step() {
     compute_force();
     add_drag_force();
-    integrate();
+    integrate_step();
     apply_constraints();
   }
 
@@ -68,7 +68,7 @@ class spring_mesh {
   void add_drag_force();
   // apply_force for the two Euler schemes; the stability lab's Verlet, RK4 and implicit Euler
   // (integrator.hpp) otherwise.
-  void integrate();
+  void integrate_step();
   // The constraints after the integration, in the order of docs/model.md: the sphere, the
   // ground (question 9), self-collision, tearing (each off unless its parameter says so).
   void apply_constraints();

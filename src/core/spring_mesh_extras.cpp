@@ -79,7 +79,7 @@ void spring_mesh::add_drag_force() {
       drag.stiffness * (drag.target - as_vectors(particles_.position)[k]);
 }
 
-void spring_mesh::integrate() {
+void spring_mesh::integrate_step() {
   const cloth_parameters used = effective_parameters();
   const dynamics_parameters& d = used.dynamics;
   if (d.integrator == integrator_kind::semi_implicit ||

@@ -281,8 +281,8 @@ void scene::step_current_stage() {
     const clock::time_point forces_done = clock::now();
     // Numerical integration (pins: fixed vertices are never moved): the cloth's apply_force
     // (question 6), or a scheme of the stability lab.
-    if constexpr (requires { stage.integrate(); })
-      stage.integrate();
+    if constexpr (requires { stage.integrate_step(); })
+      stage.integrate_step();
     else
       stage.apply_force();
     const clock::time_point integrated = clock::now();
