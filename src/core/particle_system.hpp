@@ -51,5 +51,11 @@ inline std::span<glm::dvec3> as_vectors(std::vector<double>& flat) {
 inline std::span<const glm::dvec3> as_vectors(const std::vector<double>& flat) {
   return {reinterpret_cast<const glm::dvec3*>(flat.data()), flat.size() / 3};
 }
+inline std::span<glm::dvec3> as_vectors(std::span<double> flat) {
+  return {reinterpret_cast<glm::dvec3*>(flat.data()), flat.size() / 3};
+}
+inline std::span<const glm::dvec3> as_vectors(std::span<const double> flat) {
+  return {reinterpret_cast<const glm::dvec3*>(flat.data()), flat.size() / 3};
+}
 
 }  // namespace clothlab

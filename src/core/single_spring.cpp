@@ -27,13 +27,10 @@ void single_spring::compute_force() {
 
 void single_spring::compute_force(std::span<const double> position, std::span<double> force) const {
   // The handout's code of section 2: the spring (K, L0) pulls p1 by equation 2; p0 is fixed.
-  const auto p = [position](std::size_t i) {
-    return glm::dvec3(position[3 * i], position[3 * i + 1], position[3 * i + 2]);
-  };
-  const glm::dvec3 F = spring_force(p(1), p(0), parameters.stiffness, springs_[0].rest_length);
+  std::span<const glm::dvec3> p = as_vectors(position);  // p[0] = p0, p[1] = p1
+  std::span<glm::dvec3> forces = as_vectors(force);
   std::fill(force.begin(), force.end(), 0.0);
-  for (std::size_t c = 0; c < 3; ++c)
-    force[3 + c] = F[static_cast<glm::length_t>(c)];
+  forces[1] = spring_force(p[1], p[0], parameters.stiffness, springs_[0].rest_length);
   // The mouse drag (an addition, docs/model.md): F_d = K_d (q - p1) on p1; p0 is fixed.
   add_mass_drag_force(parameters.drag, particles_.is_fixed, position, force);
 }
