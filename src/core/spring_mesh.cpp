@@ -58,7 +58,7 @@ void spring_mesh::compute_force() {
   for (int kv = 0; kv < N; ++kv) {
     for (int ku = 0; ku < N; ++ku) {
       const std::size_t k = index(ku, kv, N);
-      glm::dvec3 f = {0.0, 0.0, 0.0};  // the force on s(ku, kv), N (gravity: in apply_force)
+      glm::dvec3 f = {0.0, 0.0, 0.0};  // the force on s(ku, kv), N
 
       // BEGIN SOLUTION Q8: structural springs
       // STUDENT(handout)| // TODO Q8 (structural springs): add to f the forces of the structural

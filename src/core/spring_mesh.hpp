@@ -35,7 +35,8 @@ class spring_mesh {
   void compute_force();
   // ... and apply_force integrates over one step dt (question 6): explicit Euler, in the
   // handout's code order (semi-implicit, the default) or its equation 6's (--integrator
-  // explicit). Gravity g is added there, as an acceleration. A fixed vertex never moves.
+  // explicit). A fixed vertex never moves. Gravity: the acceleration g here, or the force m g
+  // in compute_force, as the handout's section 4.1 puts it (the tests accept either).
   void apply_force();
   // The three stiffnesses K (N/m), as the simulation uses them at this N (question 10).
   double structural_stiffness() const { return stiffness(spring_family::structural); }
