@@ -4,17 +4,18 @@
 # lab's grader (labels q5 ... q13), then prints the table of the lab's questions.
 # BEGIN TEACHER
 # A plain run also builds the browser version (build-web/) and opens it in headless chromium
-# (label web, docs/web.md), then builds the same sources with AddressSanitizer and
-# UndefinedBehaviorSanitizer (in build-sanitize/) and runs the core, cli, model and stability
-# tests there: a finding fails the run.
-#   ./test.sh [ctest options]             e.g. ./test.sh -L q8 (one question; no sanitizer run)
+# (label web, docs/web.md). It leaves out the long checks (label long: the grader on whole
+# classes, honest and hostile, the Classroom workflow's run, the student copy in every state of
+# the lab) and the sanitizer builds; `./test.sh --long` runs those, and CI runs both
+# (.ci/run, docs/testing.md).
+#   ./test.sh [ctest options]             e.g. ./test.sh -L q8 (one question)
+#   ./test.sh --long                      the long checks, then the sanitizer part: the core, cli,
+#                                         model, stability and fuzz labels built with
+#                                         AddressSanitizer and UndefinedBehaviorSanitizer
 # END TEACHER
 # COPY| #   ./test.sh [ctest options]             e.g. ./test.sh -L q8 (one question)
 #   ./test.sh --sanitize [ctest options]  the sanitizer build only, every test unless options
 #                                         say otherwise, e.g. ./test.sh --sanitize -L cli
-# BEGIN TEACHER
-# CLOTHLAB_SKIP_SANITIZE=1 ./test.sh skips the sanitizer part of the plain run.
-# END TEACHER
 set -euo pipefail
 root=$(cd "$(dirname "$0")" && pwd)
 
@@ -39,7 +40,7 @@ sanitize() {
   # Mesa's DRI driver), which LeakSanitizer can neither symbolise nor so suppress: the window
   # tests run without leak checking, every other check on.
   local status=0
-  ctest --output-on-failure --timeout 600 -j 2 -LE "window|student_copy" || status=$?
+  ctest --output-on-failure --timeout 600 -j 2 -LE "window|student_copy|long" || status=$?
   ASAN_OPTIONS=${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0} \
     ctest --output-on-failure --timeout 600 -j 2 -L window || status=$?
   return $status
@@ -52,6 +53,22 @@ if [ "${1:-}" = "--sanitize" ]; then
   sanitize "$@"
   exit
 fi
+
+# BEGIN TEACHER
+if [ "${1:-}" = "--long" ]; then
+  shift
+  "$root/scripts/setup.sh" Release
+  status=0
+  (cd "$root/build" && ctest --output-on-failure --timeout 3600 -j 2 -L '^long$' "$@") ||
+    status=$?
+  # The labels that need no OpenGL context also under the sanitizers. (Not the run through EGL:
+  # Mesa's EGL driver leaves two 56-byte blocks from a library it unloads before exit, which
+  # LeakSanitizer can neither symbolise nor so suppress.)
+  targets=(--target clothlab core_tests cli_tests stability_tests fuzz_tests)
+  sanitize -L "^(core|cli|model|stability|fuzz|stability-solution)$" -E "gl_egl" || status=$?
+  exit "$status"
+fi
+# END TEACHER
 
 # BEGIN TEACHER
 # CI (no arguments), or a run naming the web tests (-L web): the browser build too, for the
@@ -86,9 +103,16 @@ if [ "$platform" = macos ]; then
   left_out+=(window)
 fi
 ctest_options=("$@")
-if [ $# -eq 0 ] && [ ${#left_out[@]} -gt 0 ]; then
-  echo "clothlab: on $platform, the tests labelled ${left_out[*]} are skipped (docs/platforms.md)"
-  ctest_options=(-LE "^($(IFS='|' && echo "${left_out[*]}"))(-solution)?\$")
+if [ $# -eq 0 ]; then
+  if [ ${#left_out[@]} -gt 0 ]; then
+    echo "clothlab: on $platform, the tests labelled ${left_out[*]} are skipped (docs/platforms.md)"
+  fi
+  # BEGIN TEACHER
+  left_out+=(long)  # ./test.sh --long
+  # END TEACHER
+  if [ ${#left_out[@]} -gt 0 ]; then
+    ctest_options=(-LE "^($(IFS='|' && echo "${left_out[*]}"))(-solution)?\$")
+  fi
 fi
 status=0
 (cd "$root/build" &&
@@ -103,14 +127,4 @@ if [ ${#web[@]} -gt 0 ] && ! wait "$web_build"; then
 fi
 # END TEACHER
 python3 "$root/scripts/lab-report" "$root/build" "$root/build/test-results.xml"
-[ "$status" -eq 0 ] || exit "$status"
-
-# BEGIN TEACHER
-# CI (no arguments): the labels that need no OpenGL context also under the sanitizers.
-if [ $# -eq 0 ] && [ "${CLOTHLAB_SKIP_SANITIZE:-0}" != 1 ]; then
-  targets=(--target clothlab core_tests cli_tests stability_tests fuzz_tests)
-  # (Not the run through EGL: Mesa's EGL driver leaves two 56-byte blocks from a library it
-  # unloads before exit, which LeakSanitizer can neither symbolise nor so suppress.)
-  sanitize -L "^(core|cli|model|stability|fuzz|stability-solution)$" -E "gl_egl"
-fi
-# END TEACHER
+exit "$status"

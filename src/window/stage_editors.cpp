@@ -8,9 +8,12 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <utility>
 
-#include "core/stability.hpp"  // the core's: step-size limits (question 4)
+#include "core/parameter_table.hpp"  // the sliders' ranges
+#include "core/stability.hpp"        // the core's: step-size limits (question 4)
 #include "window/analysis_views.hpp"
 #include "window/gpu_section.hpp"
 #include "window/layout_probe.hpp"
@@ -19,12 +22,16 @@
 namespace clothlab {
 namespace {
 
-constexpr double max_spring_time_step = 0.1;  // s, spring and chain
-constexpr double max_cloth_time_step = 0.02;  // s
-constexpr double max_stiffness = 1e5;         // N/m: far past every stability limit
-constexpr double max_drag_stiffness = 1e5;    // K_d, N/m
-// N: stronger wind folds the default cloth through itself (without self-collision).
-constexpr double max_wind_strength = 20.0;
+// A slider over the range that the parameter table gives the option (for the stage's struct).
+template <typename value_type>
+bool parameter_slider(const char* label, value_type& value, std::string_view option,
+                      stage_kind stage, const char* format = "%.3f") {
+  const slider_range range = parameter_named(option).slider_for(stage);
+  if constexpr (std::is_same_v<value_type, int>)
+    return slider(label, value, static_cast<int>(range.low), static_cast<int>(range.high));
+  else
+    return slider(label, value, range.low, range.high, format, range.logarithmic);
+}
 
 // Question 4: where dt stands against the step-size limit of the stage's stiffest mode
 // (stability.hpp), as a bar that fills up to the limit.
@@ -40,15 +47,15 @@ void show_stability(const stability_estimate& estimate) {
 
 // dt, mu, m, g0 and the integrator, which every stage has (model.md, "Common"). While the cloth
 // runs on the GPU, the integrators the GPU does not have are offered greyed out.
-void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool cloth = false,
-                   bool on_gpu = false) {
-  slider("dt (s)", dynamics.time_step, 1e-4, max_time_step, "%.5f", true);
+void edit_dynamics(dynamics_parameters& dynamics, stage_kind stage, bool on_gpu = false) {
+  const bool cloth = stage == stage_kind::cloth;
+  parameter_slider("dt (s)", dynamics.time_step, "--dt", stage, "%.5f");
   note_time_step_slider();
-  // mu dt stays at most 1 (the damping factor 1 - mu dt must not turn negative) for every dt
-  // of the slider above.
-  slider("damping mu (1/s)", dynamics.damping, 0.0, 1.0 / max_time_step, "%.3f");
-  slider("mass m (kg)", dynamics.mass, 0.01, 10.0, "%.3f", true);
-  slider("gravity g0 (m/s^2)", dynamics.gravity, 0.0, 30.0, "%.2f");
+  // The damping slider ends where mu dt = 1 for the largest dt of the slider above (the damping
+  // factor 1 - mu dt must not turn negative).
+  parameter_slider("damping mu (1/s)", dynamics.damping, "--mu", stage, "%.3f");
+  parameter_slider("mass m (kg)", dynamics.mass, "--mass", stage, "%.3f");
+  parameter_slider("gravity g0 (m/s^2)", dynamics.gravity, "--gravity", stage, "%.2f");
   if (ImGui::BeginCombo("integrator", std::string(integrator_name(dynamics.integrator)).c_str())) {
     for (const integrator_kind kind : all_integrators) {
       std::string why_not;
@@ -66,9 +73,9 @@ void edit_dynamics(dynamics_parameters& dynamics, double max_time_step, bool clo
 }
 
 // The mouse drag's spring on a mass of stages 1 and 2 (model.md, "drag").
-void edit_mass_drag(mass_drag_parameters& drag) {
+void edit_mass_drag(mass_drag_parameters& drag, stage_kind stage) {
   fixed_lines("left drag on a mass: pull it (p0 is fixed)", 1, text_style::disabled);
-  slider("drag stiffness K_d (N/m)", drag.stiffness, 1.0, max_drag_stiffness, "%.0f", true);
+  parameter_slider("drag stiffness K_d (N/m)", drag.stiffness, "--drag-stiffness", stage, "%.0f");
 }
 
 // The height of the lowest pinned particle; with no pins, of the cloth's start (z = 0, model.md).
@@ -128,7 +135,8 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   cloth_parameters& p = the_scene.cloth_stage.parameters;
   fixed_lines("left drag on the cloth: pull a particle; Shift + left drag: move the sphere", 2,
               text_style::disabled);
-  slider("drag stiffness K_d (N/m)", p.drag.stiffness, 1.0, max_drag_stiffness, "%.0f", true);
+  const stage_kind cloth = stage_kind::cloth;
+  parameter_slider("drag stiffness K_d (N/m)", p.drag.stiffness, "--drag-stiffness", cloth, "%.0f");
   ImGui::Checkbox("sphere", &p.sphere.enabled);
   ImGui::SameLine();
   if (ImGui::Button("Drape over a sphere (resets)")) {
@@ -143,9 +151,9 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
                        "%.2f", ImGuiSliderFlags_AlwaysClamp);
   slider("radius r (m)", p.sphere.radius, 0.02, 2.0, "%.2f", true);
   // mu_s dt <= 1 for every dt of the cloth's slider.
-  slider("friction mu_s (1/s)", p.sphere.friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
+  parameter_slider("friction mu_s (1/s)", p.sphere.friction, "--sphere-friction", cloth, "%.2f");
 
-  slider("tear strain eps (0: off)", p.tear_strain, 0.0, 3.0, "%.3f");
+  parameter_slider("tear strain eps (0: off)", p.tear_strain, "--tear-strain", cloth, "%.3f");
   // On its own line: beside the full-width slider the panel's edge would cut it off.
   if (ImGui::Button("Rip (resets)")) {
     rip_preset(p);
@@ -169,8 +177,10 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.45f);
   // Up to the shortest rest length h, where the model clamps it (docs/model.md).
+  const slider_range range = parameter_named("--self-collision").slider;
   const double h = p.side_length / std::max(p.grid_size - 1, 1);
-  slider("thickness d (m)", thickness, 0.001, std::max(0.001, std::min(0.2, h)), "%.3f", true);
+  slider("thickness d (m)", thickness, range.low, std::max(range.low, std::min(range.high, h)),
+         "%.3f", range.logarithmic);
   p.self_collision_thickness = self_collision ? thickness : 0.0;
   // The GPU paths run what gpu_cloth::supports accepts; anything else takes the cloth back to
   // the CPU (scene::draw_scene), and this line says why beforehand.
@@ -235,41 +245,45 @@ void edit_simulation_control(simulation_control& control, user_actions& actions)
 void edit_single_spring(scene& the_scene, user_actions& actions) {
   single_spring& stage = the_scene.spring_stage;
   if (section("Q2-Q4 spring: dt, K, damping")) {
-    edit_dynamics(stage.parameters.dynamics, max_spring_time_step);
-    slider("stiffness K (N/m)", stage.parameters.stiffness, 0.0, max_stiffness, "%.2f", true);
+    edit_dynamics(stage.parameters.dynamics, stage_kind::spring);
+    parameter_slider("stiffness K (N/m)", stage.parameters.stiffness, "--K", stage_kind::spring,
+                     "%.2f");
     show_stability(estimate_stability(stage));
   }
   if (section("Q2 motion: extension x(t), exact solution, error"))
     show_spring_motion(the_scene, actions);
   if (section("Mouse"))
-    edit_mass_drag(stage.parameters.drag);
+    edit_mass_drag(stage.parameters.drag, stage_kind::spring);
 }
 
 void edit_coupled_springs(coupled_springs& stage, user_actions& actions) {
   if (section("Q5 coupled springs: the chain")) {
-    actions.reset |= slider("masses n (rebuilds)", stage.parameters.mass_count, 1, 50);
+    actions.reset |= parameter_slider("masses n (rebuilds)", stage.parameters.mass_count, "--chain",
+                                      stage_kind::coupled);
   }
   if (section("Q4 dt, K, damping")) {
-    edit_dynamics(stage.parameters.dynamics, max_spring_time_step);
-    slider("stiffness K (N/m)", stage.parameters.stiffness, 0.0, max_stiffness, "%.2f", true);
+    edit_dynamics(stage.parameters.dynamics, stage_kind::coupled);
+    parameter_slider("stiffness K (N/m)", stage.parameters.stiffness, "--K", stage_kind::coupled,
+                     "%.2f");
     show_stability(estimate_stability(stage));
   }
   if (section("Mouse"))
-    edit_mass_drag(stage.parameters.drag);
+    edit_mass_drag(stage.parameters.drag, stage_kind::coupled);
 }
 
 void edit_cloth(scene& the_scene, user_actions& actions) {
   spring_mesh& stage = the_scene.cloth_stage;
   render_settings& display = the_scene.display;
   cloth_parameters& p = stage.parameters;
+  const stage_kind cloth = stage_kind::cloth;
   if (section("Q4 dt, damping")) {
-    edit_dynamics(p.dynamics, max_cloth_time_step, true, the_scene.backend() != cloth_backend::cpu);
+    edit_dynamics(p.dynamics, stage_kind::cloth, the_scene.backend() != cloth_backend::cpu);
     show_stability(estimate_stability(stage));
   }
   if (section("Q8 springs: three stiffnesses")) {
-    slider("K_struct (N/m)", p.structural_stiffness, 0.0, max_stiffness, "%.1f", true);
-    slider("K_shear (N/m)", p.shear_stiffness, 0.0, max_stiffness, "%.1f", true);
-    slider("K_bend (N/m)", p.bending_stiffness, 0.0, max_stiffness, "%.1f", true);
+    parameter_slider("K_struct (N/m)", p.structural_stiffness, "--K-struct", cloth, "%.1f");
+    parameter_slider("K_shear (N/m)", p.shear_stiffness, "--K-shear", cloth, "%.1f");
+    parameter_slider("K_bend (N/m)", p.bending_stiffness, "--K-bend", cloth, "%.1f");
     ImGui::Checkbox("show the springs, coloured by family", &display.show_springs);
     show_spring_legend();
   }
@@ -288,11 +302,12 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
     slider("height z_g (m)", p.ground_height, -3.0, highest_ground, "%.2f");
     p.ground_height = std::min(p.ground_height, highest_ground);
     // mu_g dt <= 1 for every dt of the cloth's slider.
-    slider("friction mu_g (1/s)", p.ground_friction, 0.0, 1.0 / max_cloth_time_step, "%.2f");
+    parameter_slider("friction mu_g (1/s)", p.ground_friction, "--ground-friction", cloth, "%.2f");
   }
   if (section("Q10 resolution")) {
-    actions.reset |= slider("grid N (rebuilds)", p.grid_size, 2, 100);
-    actions.reset |= slider("side S (m, rebuilds)", p.side_length, 0.2, 4.0, "%.2f");
+    actions.reset |= parameter_slider("grid N (rebuilds)", p.grid_size, "--N", cloth);
+    actions.reset |=
+        parameter_slider("side S (m, rebuilds)", p.side_length, "--size", cloth, "%.2f");
     int scaling = static_cast<int>(p.scaling);
     ImGui::RadioButton("per particle (handout)", &scaling,
                        static_cast<int>(resolution_scaling::per_particle));
@@ -301,7 +316,7 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
                        static_cast<int>(resolution_scaling::resolution_independent));
     p.scaling = static_cast<resolution_scaling>(scaling);
     if (p.scaling == resolution_scaling::resolution_independent)
-      slider("reference grid N_ref", p.reference_grid_size, 2, 100);
+      parameter_slider("reference grid N_ref", p.reference_grid_size, "--reference-N", cloth);
     // What the simulation really uses at this N (parameters.hpp).
     const cloth_parameters effective = effective_cloth_parameters(p);
     ImGui::Text("h = S/(N-1) = %.4g m, %d particles", p.side_length / (p.grid_size - 1),
@@ -310,7 +325,7 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
                 effective.bending_stiffness);
   }
   if (section("Q13 wind")) {
-    slider("strength K_w (N)", p.wind_strength, 0.0, max_wind_strength, "%.2f");
+    parameter_slider("strength K_w (N)", p.wind_strength, "--wind-strength", cloth, "%.2f");
     glm::dvec3 direction = p.wind_direction;
     const double min = -1.0, max = 1.0;
     ImGui::SliderScalarN("direction u_w", ImGuiDataType_Double, &direction.x, 3, &min, &max, "%.2f",

@@ -7,6 +7,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <emscripten.h>
 #include <emscripten/html5.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
@@ -85,6 +86,25 @@ void on_browser_wheel(GLFWwindow* window, double x, double y) {
   ImGui_ImplGlfw_ScrollCallback(window, browser_delta_to_notches(x),
                                 glfw_vertical_wheel_in_notches ? y : browser_delta_to_notches(y));
 }
+
+// From 1.89.3 on, Dear ImGui's GLFW backend takes the panel's wheel from a listener of its own on
+// the document (emscripten's html5 API), not from GLFW's callback, and cancels each event there.
+// Browsers treat a document's wheel listeners as passive: Chromium ignores the cancel and logs a
+// console error at every notch. This listener replaces it, the same deltas in notches (a line is
+// a third of a notch, a pixel a hundredth, a page 80), and cancels nothing: GLFW's own listener,
+// on the canvas, already keeps the page from scrolling under the window.
+#if IMGUI_VERSION_NUM >= 18930
+float dom_delta_to_notches(double delta, unsigned long mode) {
+  const double per_unit = mode == DOM_DELTA_LINE ? 1.0 / 3.0 : mode == DOM_DELTA_PAGE ? 80.0 : 0.01;
+  return static_cast<float>(-delta * per_unit);
+}
+
+EM_BOOL on_document_wheel(int /*event_type*/, const EmscriptenWheelEvent* event, void*) {
+  ImGui::GetIO().AddMouseWheelEvent(dom_delta_to_notches(event->deltaX, event->deltaMode),
+                                    dom_delta_to_notches(event->deltaY, event->deltaMode));
+  return EM_FALSE;
+}
+#endif
 
 void frame(void* /*unused*/) {
   page.app->frame(page.context->poll_events());
@@ -180,6 +200,12 @@ int main() {
     return 1;
   }
   glfwSetScrollCallback(page.context->window(), on_browser_wheel);
+#if IMGUI_VERSION_NUM >= 18930
+  // (A registration adds a listener: Dear ImGui's is removed first.)
+  emscripten_set_wheel_callback(EMSCRIPTEN_EVENT_TARGET_DOCUMENT, nullptr, false, nullptr);
+  emscripten_set_wheel_callback(EMSCRIPTEN_EVENT_TARGET_DOCUMENT, nullptr, false,
+                                on_document_wheel);
+#endif
   // One frame per animation frame of the page; main returns and the page lives on.
   emscripten_set_main_loop_arg(frame, nullptr, 0, false);
   return 0;

@@ -278,6 +278,15 @@ click_widget() {  # NAME
   echo "window test: clicked \"$1\" at ($x, $y)"
 }
 
+# Clicks the panel's preset button NAME until the window says PATTERN (three tries).
+click_preset() {  # NAME PATTERN
+  for _ in 1 2 3; do
+    click_widget "$1"
+    wait_for_log "$2" && return 0
+  done
+  fail "three clicks on the $1 button did not set the preset (no line '$2')"
+}
+
 # The three numbers of the first "(x, y, z)" after `label` in a line of the log.
 vector_after() {
   echo "$2" | sed -E "s/.*$1 \(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\).*/\1 \2 \3/"
@@ -336,7 +345,9 @@ grab_and_pull() {  # [SECONDS the pull is held after the mouse stops; 2 by defau
   to=$(vector_after "at" "$released")
   moved=$(awk -v a="$from" -v b="$to" 'BEGIN { split(a, p); split(b, q)
     print sqrt((p[1] - q[1]) ^ 2 + (p[2] - q[2]) ^ 2 + (p[3] - q[3]) ^ 2) }')
-  awk -v m="$moved" 'BEGIN { exit !(m > 0.1) }' ||
+  # (min_move: the rip releases as soon as the cloth tears, which under load can be a few steps
+  # after the yank: there the torn springs are the evidence of the pull.)
+  awk -v m="$moved" -v least="${min_move:-0.1}" 'BEGIN { exit !(m > least) }' ||
     fail "the grabbed particle moved only $moved m (from $from to $to)"
   echo "window test: $grabbed" >&2
   echo "window test: $released; moved $moved m, camera still at $(camera_at ended)" >&2
@@ -375,11 +386,7 @@ case "$scenario" in
       fail "$shot shows no banner over the scene (dark fraction $dark)"
     echo "window test: the banner covers $dark of the scene"
     press r  # back in view: the banner goes, and comes again when it falls out once more
-    for _ in $(seq 40); do
-      [ "$(grep -c "fell out of view" window.log)" -ge 2 ] && break
-      sleep 0.25
-    done
-    [ "$(grep -c "fell out of view" window.log)" -ge 2 ] || fail "after R the cloth did not fall out of view again"
+    wait_for_new_log "fell out of view" 1 || fail "after R the cloth did not fall out of view again"
     ;;
   spring_plot)
     # Question 2's x(t) plot has a sample of every step: the frames that a screenshot stalls
@@ -400,28 +407,22 @@ case "$scenario" in
   presets)
     # The Rip preset's button, in the tearing section, can be scrolled to and clicked (at
     # 1280 x 800 it was cut off beside the full-width tear strain slider).
-    click_widget Rip
-    wait_for_log "preset Rip: m = 0.1 kg, tear strain 1, K_d = 2000 N/m" ||
-      fail "a click on the Rip button did not set the preset"
-    click_widget "Drape over a sphere"
-    wait_for_log "preset Drape over a sphere" || fail "a click on Drape did not set the preset"
+    # A button that a slow frame moved between its layout line and the click (a wheel click
+    # still on its way) is clicked again: setting a preset twice is the same as once.
+    click_preset Rip "preset Rip: m = 0.1 kg, tear strain 1, K_d = 2000 N/m"
+    click_preset "Drape over a sphere" "preset Drape over a sphere"
     # Questions 1 and 3: the frame anatomy opens and shows the steps' compute_force.
     click_widget "frame anatomy"
-    for _ in $(seq 40); do
-      grep -q 'widget "frame anatomy: compute_force" at ([0-9]*, [0-9]*), in sight' window.log && break
-      sleep 0.25
-    done
-    grep -q 'widget "frame anatomy: compute_force" at ([0-9]*, [0-9]*), in sight' window.log ||
+    wait_for_log 'widget "frame anatomy: compute_force" at ([0-9]*, [0-9]*), in sight' ||
       fail "the frame anatomy did not show compute_force once opened"
     ;;
   rip)
-    click_widget Rip
-    wait_for_log "preset Rip:" || fail "a click on the Rip button did not set the preset"
+    click_preset Rip "preset Rip:"
     # A yank: the mouse jumps 300 px at once (a slow pull can leave the cloth in a stretched
     # equilibrium short of the strain, depending on the particle grabbed), then the button is
     # held until the window says the cloth tore (at most 40 s: under load the window runs far
     # fewer steps a second).
-    released=$(pull_moves=1 grab_and_pull 40 "the cloth began to tear")
+    released=$(pull_moves=1 min_move=0 grab_and_pull 40 "the cloth began to tear")
     springs=$(springs_in "$released")
     [ "$springs" -lt "$whole_cloth_springs" ] ||
       fail "pulling the light cloth with tearing on tore no spring ($springs springs)"
@@ -562,11 +563,7 @@ case "$scenario" in
     # Nothing is drawn for the diverged stage: the panel (with its red message) on the background.
     check_image "$(screenshot_of spring)" 1280 800 20
     press r  # reset: the run starts again, and diverges again
-    for _ in $(seq 40); do
-      [ "$(grep -c "diverged at step" window.log)" -ge 2 ] && break
-      sleep 0.25
-    done
-    [ "$(grep -c "diverged at step" window.log)" -ge 2 ] || fail "R did not restart the run"
+    wait_for_new_log "diverged at step" 1 || fail "R did not restart the run"
     check_steady_panel spring 2  # running, then diverged: the slider did not move
     ;;
   gpu_switch)
