@@ -27,17 +27,6 @@
 
 namespace clothlab {
 
-// The key to the two Euler schemes of model.md in time_integrator. The cloth's Euler step is
-// question 6 (spring_mesh::apply_force), written by the student; the single spring and the
-// chain integrate with the handout's own code of section 2, run by time_integrator for them
-// alone: only those two stages (and the tests of the schemes) can make the key.
-class spring_stage_key {
-  spring_stage_key() = default;
-  friend class single_spring;
-  friend class coupled_springs;
-  friend struct integrator_test_access;
-};
-
 // Runs the schemes. It keeps the scratch arrays of the multi-stage schemes and the implicit
 // solver between steps, so that a step allocates nothing once the size is known.
 class time_integrator {
@@ -48,9 +37,6 @@ class time_integrator {
   // start of the step (the stage's compute_force); it is left unchanged.
   void step(const dynamics_parameters& dynamics, const force_model& forces,
             particle_system& particles);
-  // The same for any of the five schemes, for the single spring and the chain.
-  void step(const dynamics_parameters& dynamics, const force_model& forces,
-            particle_system& particles, spring_stage_key);
 
   // The implicit scheme's solver, for its statistics (iterations of the last step).
   const implicit_euler_solver& implicit_solver() const { return implicit_; }

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace clothlab {
@@ -37,5 +38,24 @@ struct particle_system {
   // True when every position and velocity is finite (no NaN, no infinity).
   bool is_finite() const;
 };
+
+// A flat array (3k + c) seen as one glm::dvec3 per particle: as_vectors(position)[k] is the
+// position of particle k, as the handout's vertices[k]. The arrays stay flat for the code that
+// reads doubles (the parallel CPU path, the GPU upload, the export); a glm::dvec3 is three
+// doubles and nothing else, so both views are of the same memory.
+static_assert(sizeof(glm::dvec3) == 3 * sizeof(double) && alignof(glm::dvec3) == alignof(double),
+              "glm::dvec3 must be laid out as three doubles");
+inline std::span<glm::dvec3> as_vectors(std::vector<double>& flat) {
+  return {reinterpret_cast<glm::dvec3*>(flat.data()), flat.size() / 3};
+}
+inline std::span<const glm::dvec3> as_vectors(const std::vector<double>& flat) {
+  return {reinterpret_cast<const glm::dvec3*>(flat.data()), flat.size() / 3};
+}
+inline std::span<glm::dvec3> as_vectors(std::span<double> flat) {
+  return {reinterpret_cast<glm::dvec3*>(flat.data()), flat.size() / 3};
+}
+inline std::span<const glm::dvec3> as_vectors(std::span<const double> flat) {
+  return {reinterpret_cast<const glm::dvec3*>(flat.data()), flat.size() / 3};
+}
 
 }  // namespace clothlab

@@ -27,23 +27,44 @@ void single_spring::compute_force() {
 
 void single_spring::compute_force(std::span<const double> position, std::span<double> force) const {
   // The handout's code of section 2: the spring (K, L0) pulls p1 by equation 2; p0 is fixed.
-  const auto p = [position](std::size_t i) {
-    return glm::dvec3(position[3 * i], position[3 * i + 1], position[3 * i + 2]);
-  };
-  const glm::dvec3 F = spring_force(p(1), p(0), parameters.stiffness, springs_[0].rest_length);
+  std::span<const glm::dvec3> p = as_vectors(position);  // p[0] = p0, p[1] = p1
+  std::span<glm::dvec3> forces = as_vectors(force);
   std::fill(force.begin(), force.end(), 0.0);
-  for (std::size_t c = 0; c < 3; ++c)
-    force[3 + c] = F[static_cast<glm::length_t>(c)];
+  forces[1] = spring_force(p[1], p[0], parameters.stiffness, springs_[0].rest_length);
   // The mouse drag (an addition, docs/model.md): F_d = K_d (q - p1) on p1; p0 is fixed.
   add_mass_drag_force(parameters.drag, particles_.is_fixed, position, force);
 }
 
 void single_spring::apply_force() {
-  const spring_set sets[] = {{springs_, parameters.stiffness}};
-  const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
-    compute_force(position, force);
-  };
-  integrator_.step(parameters.dynamics, {sets, forces_at}, particles_, spring_stage_key{});
+  const dynamics_parameters& d = parameters.dynamics;
+  if (d.integrator != integrator_kind::semi_implicit &&
+      d.integrator != integrator_kind::explicit_euler) {
+    // The stability lab's other schemes (integrator.hpp), not the handout's.
+    const spring_set sets[] = {{springs_, parameters.stiffness}};
+    const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
+      compute_force(position, force);
+    };
+    integrator_.step(d, {sets, forces_at}, particles_);
+    return;
+  }
+  // Numerical integration: the handout's code of section 2 (question 3), for the mass p1
+  // (p0 is fixed), F the force of compute_force, g = (0, 0, -g0).
+  const double dt = d.time_step;                // the time step, s
+  const double mu = d.damping;                  // the damping, 1/s
+  const double m = d.mass;                      // the mass, kg
+  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // gravity, m/s^2
+  const glm::dvec3 F = particles_.get_force(1);
+  glm::dvec3 p1 = particles_.get_position(1);
+  glm::dvec3 v1 = particles_.get_velocity(1);
+  if (d.integrator == integrator_kind::semi_implicit) {
+    v1 = (1.0 - mu * dt) * v1 + dt * (F / m + g);  // the handout's order: the speed first,
+    p1 = p1 + dt * v1;                             // then the position with the new speed
+  } else {
+    p1 = p1 + dt * v1;  // equation 6: the position with the speed at the start of the step
+    v1 = (1.0 - mu * dt) * v1 + dt * (F / m + g);
+  }
+  particles_.set_position(1, p1);
+  particles_.set_velocity(1, v1);
 }
 
 }  // namespace clothlab

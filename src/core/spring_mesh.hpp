@@ -1,15 +1,16 @@
-// Stage 3 (handout section 4, questions 6 to 10 and 13): the N x N cloth.
-// Particle (ku, kv) has index k = ku + N kv; its coordinate c is at 3k + c of the flat arrays.
+// Stage 3 (handout section 4, questions 6 to 10 and 13): the N x N cloth, the handout's class
+// spring_mesh. Vertex s(ku, kv) has index k = ku + N kv.
 #pragma once
 
-#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <span>
-#include <string_view>
 #include <vector>
 
 #include "core/contacts.hpp"
+#include "core/force_model.hpp"
 #include "core/integrator.hpp"
 #include "core/parameters.hpp"
 #include "core/particle_system.hpp"
@@ -26,84 +27,61 @@ class spring_mesh {
  public:
   cloth_parameters parameters;  // edited live; grid_size, side_length and pins need load_model
 
+  // The handout's class (section 4.1): the constructor builds the N x N grid (load_model) ...
   explicit spring_mesh(const cloth_parameters& p = {});
-
-  // Initialisation: the flat N x N grid at rest at z = 0, its springs and its pins.
-  void load_model();
-  // Force computation (question 8): for every vertex s(ku, kv), the forces of its structural,
-  // shear and bending springs and the wind (question 13), from the current positions, into
-  // particles().force. Gravity is not a force here: apply_force adds g to the acceleration.
+  void load_model();  // the flat grid at rest at z = 0, its springs and its pins (question 7)
+  // ... compute_force puts in forces[k] the force on every vertex: its springs (question 8)
+  // and the wind (question 13), from the current positions ...
   void compute_force();
-  // The same forces at any positions (flat, 3k + c), for the integrators with several stages;
-  // the wind uses the normals of those positions.
-  void compute_force(std::span<const double> position, std::span<double> force);
-  // Numerical integration (question 6): the handout's explicit Euler, in its code's order
-  // (semi-implicit, the default) or its equation 6's (explicit); the stability lab's schemes
-  // otherwise. Fixed vertices never move.
+  // ... and apply_force integrates over one step dt (question 6): explicit Euler, in the
+  // handout's code order (semi-implicit, the default) or its equation 6's (--integrator
+  // explicit). A fixed vertex never moves. Gravity: the acceleration g here, or the force m g
+  // in compute_force, as the handout's section 4.1 puts it (the tests accept either).
   void apply_force();
-  // The constraints after the integration, in the order of docs/model.md: the sphere, the
-  // ground (question 9), self-collision, tearing (each off unless its parameter says so).
-  void apply_constraints();
-  // One step, as the lab names its parts: forces, integration, constraints.
-  void step() {
-    compute_force();
-    apply_force();
-    apply_constraints();
-  }
-
-  // Recomputes normals() from the current positions. A step computes them only when the wind
-  // needs them: call it before using normals() (exporting the state, for instance).
-  void compute_normals();
-
+  // The three stiffnesses K (N/m), as the simulation uses them at this N (question 10).
+  double structural_stiffness() const { return stiffness(spring_family::structural); }
+  double shear_stiffness() const { return stiffness(spring_family::shear); }
+  double bending_stiffness() const { return stiffness(spring_family::bending); }
+  double spacing() const { return spacing_; }   // h = S / (N - 1), between grid neighbours, m
   int grid_size() const { return grid_size_; }  // N of the last load_model
   static std::size_t index(int ku, int kv, int n) {
     return static_cast<std::size_t>(ku) + static_cast<std::size_t>(n) * kv;
   }
+  // Whether the spring from s(ku, kv) to its neighbour s(ku + du, kv + dv) pulls: false when
+  // that neighbour is outside the grid (or more than two vertices away), and once the spring
+  // has torn (tearing is an addition of clothlab, off by default).
+  bool spring_intact(int ku, int kv, int du, int dv) const;
+
+  // One step, as the lab names its parts (question 3): the forces (compute_force, then the
+  // mouse drag), the integration (apply_force, or a scheme of the stability lab), then the
+  // constraints (the ground of question 9, and the additions).
+  void step() {
+    compute_force();
+    add_drag_force();
+    integrate_step();
+    apply_constraints();
+  }
+
+  // ---- Beyond the handout (spring_mesh_extras.cpp, tearing.cpp): what the rest of clothlab
+  // needs from the cloth. None of it is a question of the lab.
+
+  // The mouse drag (docs/model.md): F_d = K_d (q - p) on the dragged vertex, added to forces.
+  void add_drag_force();
+  // apply_force for the two Euler schemes; the stability lab's Verlet, RK4 and implicit Euler
+  // (integrator.hpp) otherwise.
+  void integrate_step();
+  // The constraints after the integration, in the order of docs/model.md: the sphere, the
+  // ground (question 9), self-collision, tearing (each off unless its parameter says so).
+  void apply_constraints();
+  // Recomputes normals() from the current positions. compute_force computes them only when
+  // the wind needs them: call it before using normals() (exporting the state, for instance).
+  void compute_normals();
 
   const particle_system& particles() const { return particles_; }
-  particle_system& particles() { return particles_; }  // to carry a state in (GPU -> CPU)
-  std::span<const double> normals() const { return normals_; }
+  particle_system& particles() { return particles_; }           // to carry a state in (GPU -> CPU)
+  std::span<const double> normals() const { return normals_; }  // unit, 3k + c
   std::span<const spring> springs(spring_family family) const {
     return springs_[static_cast<int>(family)];
-  }
-  // Tearing (an addition): removes every spring longer than (1 + strain) L0, for the rest of the
-  // run (until load_model); returns how many. apply_force calls it when tear_strain > 0.
-  std::size_t tear_springs(double strain);
-  // Removes, for the rest of the run (until load_model), every spring s of every family for
-  // which torn(family, s) is true; returns how many. tear_springs uses it, and so does
-  // cloth_parallel::read_state to hand back the springs torn on the cpu-parallel path.
-  template <class Predicate>
-  std::size_t remove_springs(Predicate torn) {
-    std::size_t removed = 0;
-    for (spring_family family : all_spring_families) {
-      std::vector<spring>& list = springs_[static_cast<int>(family)];
-      const auto first_torn = std::stable_partition(
-          list.begin(), list.end(), [&](const spring& s) { return !torn(family, s); });
-      for (auto it = first_torn; it != list.end(); ++it)
-        set_spring_torn(*it);
-      removed += static_cast<std::size_t>(list.end() - first_torn);
-      list.erase(first_torn, list.end());
-    }
-    return removed;
-  }
-  // Removes, as tearing does, every spring s for which torn(s) is true; returns how many. For
-  // carrying a torn state in from another path (the GPU's, gpu_cloth::read_state).
-  template <typename Predicate>
-  std::size_t remove_springs_if(Predicate torn);
-  // Whether a triangle of the drawn mesh still has its three springs: each cell (ku, kv) is split
-  // along its diagonal (ku, kv)-(ku+1, kv+1) into the lower triangle (ku, kv), (ku+1, kv),
-  // (ku+1, kv+1) and the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1). 0 <= ku, kv < N - 1.
-  bool triangle_intact(int ku, int kv, bool upper) const;
-  // Whether the spring from s(ku, kv) to s(ku + du, kv + dv) has not torn (tearing is an
-  // addition of clothlab, off by default: then every spring is intact). Both vertices must be
-  // inside the grid and |du|, |dv| <= 2: otherwise it throws std::out_of_range, naming them
-  // (which springs exist at the border is question 8's to decide).
-  bool spring_intact(int ku, int kv, int du, int dv) const {
-    const int n = grid_size_;
-    if (ku < 0 || ku >= n || kv < 0 || kv >= n || ku + du < 0 || ku + du >= n || kv + dv < 0 ||
-        kv + dv >= n || du < -2 || du > 2 || dv < -2 || dv > 2)
-      throw_not_a_neighbour(ku, kv, du, dv);
-    return spring_torn_[spring_slot(index(ku, kv, n), du, dv)] == 0;
   }
   // The initial position x0 of every particle, flat (3k + c): the flat cloth at rest, whose
   // distances are the rest lengths (model.md).
@@ -111,51 +89,58 @@ class spring_mesh {
   // The parameters the simulation uses: effective_cloth_parameters(parameters) for the N of the
   // last load_model, i.e. parameters themselves in the per_particle scaling (question 10).
   cloth_parameters effective_parameters() const;
-  // K of a family as the simulation uses it (effective_parameters()).
-  double stiffness(spring_family family) const;
-  // The three families with their stiffness, in spring_family order.
-  std::array<spring_set, 3> spring_sets() const;
+  double stiffness(spring_family family) const;   // K of a family (effective_parameters())
+  std::array<spring_set, 3> spring_sets() const;  // the families with their K, in order
   // The integrator's state, e.g. integrator().implicit_solver().last_iterations() (CG).
   const time_integrator& integrator() const { return integrator_; }
 
+  // Tearing (tearing.cpp): removes every spring longer than (1 + strain) L0, for the rest of
+  // the run (until load_model); returns how many. apply_constraints calls it when
+  // tear_strain > 0.
+  std::size_t tear_springs(double strain);
+  // Removes, as tearing does, every spring s of every family for which torn(family, s) is
+  // true; returns how many. For carrying a torn state in from another path (cloth_parallel,
+  // gpu_cloth::read_state).
+  std::size_t remove_springs(const std::function<bool(spring_family, const spring&)>& torn);
+  std::size_t remove_springs_if(const std::function<bool(const spring&)>& torn);
+  // Whether a triangle of the drawn mesh still has its three springs: each cell (ku, kv) is split
+  // along its diagonal (ku, kv)-(ku+1, kv+1) into the lower triangle (ku, kv), (ku+1, kv),
+  // (ku+1, kv+1) and the upper one (ku, kv), (ku+1, kv+1), (ku, kv+1). 0 <= ku, kv < N - 1.
+  bool triangle_intact(int ku, int kv, bool upper) const;
+
  private:
   int grid_size_ = 0;
-  double spacing_ = 0.0;  // h = S / (N - 1) of the last load_model, m
+  double spacing_ = 0.0;  // h of the last load_model, m
   particle_system particles_;
-  std::vector<double> normals_;                 // n, unit, 3k + c
-  std::array<std::vector<spring>, 3> springs_;  // indexed by spring_family
   std::vector<double> rest_position_;           // x0, the initial positions, 3k + c
+  std::vector<double> normals_;                 // n, unit, 3k + c (compute_normals)
+  std::array<std::vector<spring>, 3> springs_;  // indexed by spring_family
+
+  // Beyond the handout: the state of tearing, self-collision and the stability lab's schemes.
   // 1 where the spring from vertex k to the vertex at (du, dv) from it (du, dv in [-2, 2]) has
-  // torn, at spring_slot(k, du, dv); 0 elsewhere, where there is no such spring too (which
-  // springs exist is question 8's to decide, and the spring lists').
+  // torn, at spring_slot(k, du, dv); 0 elsewhere.
   std::vector<std::uint8_t> spring_torn_;
-  self_collision self_collision_;         // its scratch arrays, kept between steps
+  self_collision self_collision_;  // its scratch arrays, kept between steps
+  time_integrator integrator_;     // the scheme's scratch arrays, kept between steps
+  particle_system stage_state_;    // the current state, kept aside while forces_at runs
+  std::vector<double> stage_normals_;
+  void list_springs();                    // springs_ of the grid, each once (load_model)
   void set_spring_torn(const spring& s);  // both ends' slots
-  // spring_intact's std::out_of_range for a neighbour outside the grid (kept out of line).
-  [[noreturn, gnu::cold]] void throw_not_a_neighbour(int ku, int kv, int du, int dv) const;
   static std::size_t spring_slot(std::size_t k, int du, int dv) {
     return 25 * k + static_cast<std::size_t>(5 * (dv + 2) + (du + 2));
   }
-  std::vector<double> stage_normals_;  // normals of a scheme's intermediate state (wind)
-  time_integrator integrator_;         // the scheme's scratch arrays, kept between steps
-
-  // The force model of the current parameters (the wind from the normals of the positions
-  // it is evaluated at); sets must outlive it.
-  force_model forces(const std::array<spring_set, 3>& sets);
+  // force <- F(position): compute_force and the drag at other positions than the current ones
+  // (the intermediate states of the multi-stage schemes).
+  void forces_at(std::span<const double> position, std::span<double> force);
 };
-
-template <typename Predicate>
-std::size_t spring_mesh::remove_springs_if(Predicate torn) {
-  return remove_springs([&](spring_family, const spring& s) { return torn(s); });
-}
 
 // Vertex normals of an N x N grid by central differences (model.md):
 // n = normalize(d_u x d_v), d_u = p(min(ku+1,N-1),kv) - p(max(ku-1,0),kv), d_v likewise in kv.
 void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal);
 
-// The ground plane z = z_g, after the integrator: every particle that is not fixed and is below
-// it is put back on it, loses its downward velocity and has its tangential velocity damped by
-// (1 - mu_g dt).
+// The ground plane z = z_g, after the integrator (question 9): every particle that is not fixed
+// and is below it is put back on it, loses its downward velocity and has its tangential velocity
+// damped by (1 - mu_g dt).
 void apply_ground_contact(double ground_height, double ground_friction, double time_step,
                           particle_system& particles);
 

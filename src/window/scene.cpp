@@ -276,8 +276,15 @@ void scene::step_current_stage() {
   auto [time_step, check] = with_current_stage([this](auto& stage) {
     const clock::time_point start = clock::now();
     stage.compute_force();  // forces from the positions at the start of the step
+    if constexpr (requires { stage.add_drag_force(); })
+      stage.add_drag_force();  // the cloth's mouse drag (the springs' is in compute_force)
     const clock::time_point forces_done = clock::now();
-    stage.apply_force();  // numerical integration (pins: fixed vertices are never moved)
+    // Numerical integration (pins: fixed vertices are never moved): the cloth's apply_force
+    // (question 6), or a scheme of the stability lab.
+    if constexpr (requires { stage.integrate_step(); })
+      stage.integrate_step();
+    else
+      stage.apply_force();
     const clock::time_point integrated = clock::now();
     stage.apply_constraints();  // the cloth's sphere, ground, self-collision, tearing
     const clock::time_point constrained = clock::now();

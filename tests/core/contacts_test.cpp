@@ -68,6 +68,7 @@ TEST(Drag, DragForceIsKdTimesTargetMinusPosition) {
   cloth.parameters.drag = {
       .enabled = true, .ku = 1, .kv = 1, .target = {0.5, -1, 2}, .stiffness = 40};
   cloth.compute_force();
+  cloth.add_drag_force();
   expect_near(cloth.particles().get_force(4), {20, -40, 80}, 1e-12, "F_d on s(1, 1)");
   expect_near(cloth.particles().get_force(0), {0, 0, 0}, 1e-12, "no drag on s(0, 0)");
 }
@@ -77,6 +78,7 @@ TEST(Drag, APinnedParticleCannotBeDragged) {
   cloth.particles().is_fixed[0] = 1;
   cloth.parameters.drag = {.enabled = true, .ku = 0, .kv = 0, .target = {5, 5, 5}, .stiffness = 40};
   cloth.compute_force();
+  cloth.add_drag_force();
   expect_near(cloth.particles().get_force(0), {0, 0, 0}, 1e-12, "a pinned particle");
 }
 
@@ -98,6 +100,22 @@ TEST(SolutionDrag, ADraggedCornerFollowsTheTarget) {
 
 // Tearing, strain 0.1 on a 3 x 3 cloth of side 2 (h = 1): the structural spring s(0,0)-s(1,0)
 // stretched to 1.099 stays; to 1.101 it tears, and so do the triangles that used it.
+// spring_intact answers for every (ku, kv, du, dv): false past the border of the grid (no
+// spring there) and for an offset that is no neighbour, never a throw; true inside the grid
+// while nothing tore.
+TEST(Tearing, SpringIntactIsFalseOutsideTheGridAndNeverThrows) {
+  spring_mesh cloth = flat_cloth(3, 2.0);
+  EXPECT_TRUE(cloth.spring_intact(0, 0, 1, 0));
+  EXPECT_TRUE(cloth.spring_intact(2, 2, -2, 0));
+  EXPECT_TRUE(cloth.spring_intact(1, 1, -1, -1));
+  EXPECT_FALSE(cloth.spring_intact(2, 0, 1, 0)) << "s(3, 0) is past the border of the 3 x 3 grid";
+  EXPECT_FALSE(cloth.spring_intact(0, 0, -1, 0)) << "s(-1, 0)";
+  EXPECT_FALSE(cloth.spring_intact(0, 2, 0, 1)) << "s(0, 3)";
+  EXPECT_FALSE(cloth.spring_intact(0, 0, 0, -2)) << "s(0, -2)";
+  EXPECT_FALSE(cloth.spring_intact(5, 5, 0, 1)) << "s(5, 5) is not in the grid";
+  EXPECT_FALSE(cloth.spring_intact(0, 0, 3, 0)) << "three vertices away: no spring";
+}
+
 TEST(Tearing, ASpringTearsJustOverTheStrainAndNotUnder) {
   for (const double length : {1.099, 1.101}) {
     spring_mesh cloth = flat_cloth(3, 2.0);

@@ -1,0 +1,149 @@
+// What clothlab needs from the cloth beyond the handout's class (spring_mesh.cpp): its
+// parameters at this N, the list of its springs, its normals, the mouse drag, the stability
+// lab's schemes and the constraints of one step. None of it is a question of the lab.
+#include <algorithm>
+
+#include "core/contacts.hpp"
+#include "core/grid_neighbours.hpp"
+#include "core/spring_mesh.hpp"
+
+namespace clothlab {
+
+cloth_parameters spring_mesh::effective_parameters() const {
+  cloth_parameters built = parameters;
+  built.grid_size = grid_size_;
+  return effective_cloth_parameters(built);
+}
+
+double spring_mesh::stiffness(spring_family family) const {
+  const cloth_parameters effective = effective_parameters();
+  switch (family) {
+    case spring_family::structural:
+      return effective.structural_stiffness;
+    case spring_family::shear:
+      return effective.shear_stiffness;
+    case spring_family::bending:
+      return effective.bending_stiffness;
+  }
+  return 0.0;
+}
+
+std::array<spring_set, 3> spring_mesh::spring_sets() const {
+  std::array<spring_set, 3> sets{};
+  for (spring_family family : all_spring_families)
+    sets[static_cast<int>(family)] = {springs(family), stiffness(family)};
+  return sets;
+}
+
+// Every spring of figure 6 once, from its end of lower index, with its rest length, the
+// distance of its ends in the flat cloth at rest (drawing, energy, the implicit scheme's
+// Jacobian, tearing); every spring intact.
+void spring_mesh::list_springs() {
+  const int n = grid_size_;
+  std::span<const glm::dvec3> x0 = as_vectors(rest_position_);
+  for (spring_family family : all_spring_families) {
+    std::vector<spring>& list = springs_[static_cast<int>(family)];
+    list.clear();
+    for (int kv = 0; kv < n; ++kv) {
+      for (int ku = 0; ku < n; ++ku) {
+        for (const grid_offset o : family_neighbours(family)) {
+          const int ku2 = ku + o.du;
+          const int kv2 = kv + o.dv;
+          const std::size_t a = index(ku, kv, n);
+          if (ku2 < 0 || ku2 >= n || kv2 < 0 || kv2 >= n || index(ku2, kv2, n) < a)
+            continue;  // outside the grid, or already listed from the other end
+          const std::size_t b = index(ku2, kv2, n);
+          list.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+                          glm::length(x0[a] - x0[b])});
+        }
+      }
+    }
+  }
+  spring_torn_.assign(spring_slot(particles_.size(), -2, -2), 0);
+}
+
+void spring_mesh::compute_normals() {
+  normals_.resize(particles_.position.size());
+  compute_vertex_normals(grid_size_, particles_.position, normals_);
+}
+
+void spring_mesh::add_drag_force() {
+  const drag_parameters& drag = parameters.drag;
+  const int n = grid_size_;
+  if (!drag.enabled || drag.ku < 0 || drag.ku >= n || drag.kv < 0 || drag.kv >= n)
+    return;
+  const std::size_t k = index(drag.ku, drag.kv, n);
+  if (particles_.is_fixed[k])
+    return;  // a pinned vertex cannot be dragged
+  as_vectors(particles_.force)[k] +=
+      drag.stiffness * (drag.target - as_vectors(particles_.position)[k]);
+}
+
+void spring_mesh::integrate_step() {
+  const cloth_parameters used = effective_parameters();
+  const dynamics_parameters& d = used.dynamics;
+  if (d.integrator == integrator_kind::semi_implicit ||
+      d.integrator == integrator_kind::explicit_euler) {
+    apply_force();  // question 6
+    return;
+  }
+  const std::array<spring_set, 3> sets = spring_sets();
+  const force_model forces = {sets,
+                              [this](std::span<const double> position, std::span<double> force) {
+                                forces_at(position, force);
+                              }};
+  integrator_.step(d, forces, particles_);
+}
+
+// compute_force works on the current state: the stage's positions are swapped in, and the
+// current state (with its normals) is put back after.
+void spring_mesh::forces_at(std::span<const double> position, std::span<double> force) {
+  stage_state_.position.assign(position.begin(), position.end());
+  stage_state_.force.resize(particles_.force.size());
+  std::swap(particles_.position, stage_state_.position);
+  std::swap(particles_.force, stage_state_.force);
+  std::swap(normals_, stage_normals_);
+  compute_force();
+  add_drag_force();
+  std::copy(particles_.force.begin(), particles_.force.end(), force.begin());
+  std::swap(particles_.position, stage_state_.position);
+  std::swap(particles_.force, stage_state_.force);
+  std::swap(normals_, stage_normals_);
+}
+
+void spring_mesh::apply_constraints() {
+  // In the order of docs/model.md: the sphere (an addition), the ground (question 9),
+  // self-collision (an addition), then tearing (an addition). The pins are apply_force's: it
+  // never moves a fixed vertex.
+  const double dt = effective_parameters().dynamics.time_step;
+  if (parameters.sphere.enabled)
+    apply_sphere_contact(parameters.sphere, dt, particles_);
+  if (parameters.ground_enabled)  // question 9
+    apply_ground_contact(parameters.ground_height, parameters.ground_friction, dt, particles_);
+  if (parameters.self_collision_thickness > 0.0)
+    self_collision_.apply(grid_size_, self_collision_distance(parameters), particles_);
+  if (parameters.tear_strain > 0.0)
+    tear_springs(parameters.tear_strain);
+}
+
+void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal) {
+  auto p = [&](int ku, int kv) {
+    const std::size_t k = 3 * spring_mesh::index(ku, kv, n);
+    return glm::dvec3(position[k], position[k + 1], position[k + 2]);
+  };
+  for (int kv = 0; kv < n; ++kv) {
+    for (int ku = 0; ku < n; ++ku) {
+      // Central differences, one-sided on the border.
+      const glm::dvec3 du = p(std::min(ku + 1, n - 1), kv) - p(std::max(ku - 1, 0), kv);
+      const glm::dvec3 dv = p(ku, std::min(kv + 1, n - 1)) - p(ku, std::max(kv - 1, 0));
+      const glm::dvec3 c = glm::cross(du, dv);
+      const glm::dvec3 unit = c / glm::length(c);
+      const std::size_t k = 3 * spring_mesh::index(ku, kv, n);
+      normal[k] = unit.x;
+      normal[k + 1] = unit.y;
+      normal[k + 2] = unit.z;
+    }
+  }
+}
+
+}  // namespace clothlab
