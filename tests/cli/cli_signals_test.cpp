@@ -50,8 +50,8 @@ INSTANTIATE_TEST_SUITE_P(InterruptSignals, cli_signals, ::testing::Values(SIGINT
 // SIGINT at any moment, from the first microsecond to past the end of the run: the run either
 // ends whole (exit 0, every file there) or reports the signal in one line with exit 130, the
 // OBJ not written and the CSV of whole lines; never a death by the signal, never a temporary
-// file left. Before issue 22, a signal in the first 5-200 ms killed clothlab silently, and one
-// near the end left the OBJ written with exit 130. The process starts with SIGINT blocked, so
+// file left (the first milliseconds, before the handler is installed, and the last ones, while
+// the OBJ is written, are the moments to watch). The process starts with SIGINT blocked, so
 // that a signal sent during the dynamic loader's start (about a millisecond, before any code of
 // clothlab can run: docs/limits.md) waits for clothlab's handler, which unblocks it.
 TEST_F(cli, SignalAtAnyMomentIsReportedOrTooLate) {
@@ -186,8 +186,8 @@ TEST_F(cli, SignalWhileALargeStepIsWrittenKeepsWholeSteps) {
   EXPECT_EQ((lines - 1) % (1024 * 1024), 0u) << lines << " lines: a step cut short";
 }
 
-// A signal after the last step, while the OBJ is being written: the OBJ is not written (it was,
-// with exit 143, before issue 22), as docs/limits.md says of an interrupted run.
+// A signal after the last step, while the OBJ is being written: the OBJ is not written, as
+// docs/limits.md says of an interrupted run.
 TEST_F(cli, SignalWhileTheObjIsWrittenLeavesNoObj) {
   const spawn_settings how{
       clothlab_command({"--headless", "--N", "512", "--steps", "0", "--csv-every", "10", "--csv",
