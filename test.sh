@@ -3,11 +3,11 @@
 # ctest: physics, command line, off-screen screenshots, GPU paths, the window under Xvfb, and the
 # lab's grader (labels q5 ... q13), then prints the table of the lab's questions.
 # BEGIN TEACHER
-# A plain run also builds the browser version (build-web/) and opens it in headless chromium
-# (label web, docs/web.md). It leaves out the long checks (label long: the grader on whole
-# classes, honest and hostile, the Classroom workflow's run, the student copy in every state of
-# the lab) and the sanitizer builds; `./test.sh --long` runs those, and CI runs both
-# (.ci/run, docs/testing.md).
+# A plain run leaves out the long checks (label long): the browser build and its tests in
+# headless chromium (label web, docs/web.md), the grader on whole classes, honest and hostile,
+# the Classroom workflow's run, the student copy in every state of the lab, the mutation and
+# variant samples. `./test.sh --long` runs those, then the sanitizer builds; CI runs both
+# (.ci/run, docs/testing.md). `./test.sh -L web` builds the page and runs its tests.
 #   ./test.sh [ctest options]             e.g. ./test.sh -L q8 (one question)
 #   ./test.sh --long                      the long checks, then the sanitizer part: the core, cli,
 #                                         model, stability and fuzz labels built with
@@ -46,6 +46,29 @@ sanitize() {
   return $status
 }
 
+# BEGIN TEACHER
+# The browser build, for the tests that open it in headless chromium (label web, tests/web):
+# started in the background (its output in build-web/build.log) while the tests run; the
+# browser tests wait for it to end (build-web/build.status). Debian only (Ubuntu's chromium is a
+# snap package). Sets web_build to its process, or leaves it empty.
+web_build=
+start_web_build() {
+  [ "$("$root/scripts/install-packages.sh" --platform)" = debian ] || return 0
+  mkdir -p "$root/build-web"
+  rm -f "$root/build-web/build.status"
+  "$root/scripts/setup-web.sh" --with-browser >"$root/build-web/build.log" 2>&1 &
+  web_build=$!
+  echo "$web_build" >"$root/build-web/build.pid"  # (before any test can look for it)
+}
+wait_web_build() {  # the browser build's end; 1 (and the end of its log) if it failed
+  [ -n "$web_build" ] || return 0
+  wait "$web_build" && return 0
+  echo "clothlab: the browser build failed; the end of build-web/build.log:" >&2
+  tail -n 30 "$root/build-web/build.log" >&2
+  return 1
+}
+# END TEACHER
+
 if [ "${1:-}" = "--sanitize" ]; then
   shift
   "$root/scripts/setup.sh" Release
@@ -58,9 +81,11 @@ fi
 if [ "${1:-}" = "--long" ]; then
   shift
   "$root/scripts/setup.sh" Release
+  start_web_build
   status=0
   (cd "$root/build" && ctest --output-on-failure --timeout 3600 -j 2 -L '^long$' "$@") ||
     status=$?
+  wait_web_build || status=1
   # The labels that need no OpenGL context also under the sanitizers. (Not the run through EGL:
   # Mesa's EGL driver leaves two 56-byte blocks from a library it unloads before exit, which
   # LeakSanitizer can neither symbolise nor so suppress.)
@@ -70,27 +95,12 @@ if [ "${1:-}" = "--long" ]; then
 fi
 # END TEACHER
 
+"$root/scripts/setup.sh" Release
 # BEGIN TEACHER
-# CI (no arguments), or a run naming the web tests (-L web): the browser build too, for the
-# tests that open it in headless chromium (tests/web). Its packages come with the others; the
-# page builds while the other tests run (the browser tests, last, wait for it to end:
-# build-web/build.status); its output goes to build-web/build.log.
-web=()
-if [ "$("$root/scripts/install-packages.sh" --platform)" != debian ]; then
-  : # (no chromium package: the browser tests are left out below)
-elif [ $# -eq 0 ] || [[ "$*" == *web* ]]; then
-  web=(--with-web)
-fi
-"$root/scripts/setup.sh" Release ${web[@]+"${web[@]}"}
-if [ ${#web[@]} -gt 0 ]; then
-  mkdir -p "$root/build-web"
-  rm -f "$root/build-web/build.status"
-  "$root/scripts/setup-web.sh" --with-browser >"$root/build-web/build.log" 2>&1 &
-  web_build=$!
-  echo "$web_build" >"$root/build-web/build.pid"  # (before any test can look for it)
+if [[ "$*" == *web* ]]; then
+  start_web_build
 fi
 # END TEACHER
-# COPY| "$root/scripts/setup.sh" Release
 # Where the platform lacks what a label needs (docs/platforms.md), a plain run leaves it out and
 # says so: the browser tests need Debian's chromium (Ubuntu's is a snap package), the window tests
 # Xvfb (macOS has none).
@@ -120,11 +130,7 @@ status=0
     ${ctest_options[@]+"${ctest_options[@]}"}) ||
   status=$?
 # BEGIN TEACHER
-if [ ${#web[@]} -gt 0 ] && ! wait "$web_build"; then
-  echo "clothlab: the browser build failed; the end of build-web/build.log:" >&2
-  tail -n 30 "$root/build-web/build.log" >&2
-  status=1
-fi
+wait_web_build || status=1
 # END TEACHER
 python3 "$root/scripts/lab-report" "$root/build" "$root/build/test-results.xml"
 exit "$status"
