@@ -100,9 +100,17 @@ cloth_parameters effective_cloth_parameters(const cloth_parameters& parameters) 
   const double n_ref = std::max(parameters.reference_grid_size, 2);
   const double total_mass = parameters.dynamics.mass * n_ref * n_ref;  // M = m N_ref^2
   effective.dynamics.mass = total_mass / (n * n);                      // m_N = M / N^2
-  const double spacing_ratio = (n - 1) / (n_ref - 1);                  // h_ref / h
-  effective.bending_stiffness = parameters.bending_stiffness * std::pow(spacing_ratio, 4);
+  effective.bending_stiffness = effective_bending_stiffness(parameters, parameters.grid_size);
   return effective;
+}
+
+double effective_bending_stiffness(const cloth_parameters& parameters, int grid_size) {
+  if (parameters.scaling == resolution_scaling::per_particle)
+    return parameters.bending_stiffness;
+  const double n = std::max(grid_size, 2);
+  const double n_ref = std::max(parameters.reference_grid_size, 2);
+  const double spacing_ratio = (n - 1) / (n_ref - 1);  // h_ref / h
+  return parameters.bending_stiffness * std::pow(spacing_ratio, 4);
 }
 
 }  // namespace clothlab

@@ -134,6 +134,30 @@ class spring_mesh {
   void forces_at(std::span<const double> position, std::span<double> force);
 };
 
+// (In the header, and without a copy of the parameters: compute_force asks it for every spring
+// of every step.) The structural and shear stiffnesses are the same at every N
+// (effective_cloth_parameters).
+inline double spring_mesh::stiffness(spring_family family) const {
+  switch (family) {
+    case spring_family::structural:
+      return parameters.structural_stiffness;
+    case spring_family::shear:
+      return parameters.shear_stiffness;
+    case spring_family::bending:
+      return effective_bending_stiffness(parameters, grid_size_);
+  }
+  return 0.0;
+}
+
+// (In the header: compute_force asks it for every spring of every step.)
+inline bool spring_mesh::spring_intact(int ku, int kv, int du, int dv) const {
+  const int n = grid_size_;
+  if (ku < 0 || ku >= n || kv < 0 || kv >= n || ku + du < 0 || ku + du >= n || kv + dv < 0 ||
+      kv + dv >= n || du < -2 || du > 2 || dv < -2 || dv > 2)
+    return false;  // no such spring: one end outside the grid, or not a neighbour
+  return spring_torn_[spring_slot(index(ku, kv, n), du, dv)] == 0;
+}
+
 // Vertex normals of an N x N grid by central differences (model.md):
 // n = normalize(d_u x d_v), d_u = p(min(ku+1,N-1),kv) - p(max(ku-1,0),kv), d_v likewise in kv.
 void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal);

@@ -15,19 +15,6 @@ cloth_parameters spring_mesh::effective_parameters() const {
   return effective_cloth_parameters(built);
 }
 
-double spring_mesh::stiffness(spring_family family) const {
-  const cloth_parameters effective = effective_parameters();
-  switch (family) {
-    case spring_family::structural:
-      return effective.structural_stiffness;
-    case spring_family::shear:
-      return effective.shear_stiffness;
-    case spring_family::bending:
-      return effective.bending_stiffness;
-  }
-  return 0.0;
-}
-
 std::array<spring_set, 3> spring_mesh::spring_sets() const {
   std::array<spring_set, 3> sets{};
   for (spring_family family : all_spring_families)

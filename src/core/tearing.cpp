@@ -7,14 +7,6 @@
 
 namespace clothlab {
 
-bool spring_mesh::spring_intact(int ku, int kv, int du, int dv) const {
-  const int n = grid_size_;
-  if (ku < 0 || ku >= n || kv < 0 || kv >= n || ku + du < 0 || ku + du >= n || kv + dv < 0 ||
-      kv + dv >= n || du < -2 || du > 2 || dv < -2 || dv > 2)
-    return false;  // no such spring: one end outside the grid, or not a neighbour
-  return spring_torn_[spring_slot(index(ku, kv, n), du, dv)] == 0;
-}
-
 std::size_t spring_mesh::tear_springs(double strain) {
   std::span<const glm::dvec3> vertices = as_vectors(particles_.position);
   return remove_springs([&](spring_family, const spring& s) {
