@@ -13,14 +13,15 @@
 // vertex shader fetches each vertex's position and normal from these textures
 // (renderer::draw_from_textures).
 //
-// One step, two full-screen passes (shaders/), and a third when the cloth tears:
+// One step, one full-screen pass (shaders/), a second for the normals when they are used, and a
+// third when the cloth tears:
 //   1. gpu_step.frag (questions 12, 13): reads position, velocity and normal; sums the forces of
 //      the particle's own up to 12 springs (structural, shear, bending) and the wind, then runs
 //      the integrator and the ground contact; writes the new position and the new velocity
 //      (two render targets) into the other copy of each: positions and velocities ping-pong.
-//   2. gpu_normal.frag: the normals of the current positions (central differences), for the
-//      wind of the next step and for the renderer. Only when they are used: before a step with
-//      wind, and when normal_texture() is asked for (once per drawn frame), not after every step.
+//   2. gpu_normal.frag: the normals of the current positions (central differences), run only
+//      when they are used: before a step with wind (its force needs them), and when
+//      normal_texture() is asked for (the renderer, once per drawn frame).
 //   3. gpu_tear.frag (tearing, an addition, only with tear_strain > 0): the springs that the new
 //      positions stretch beyond (1 + eps) L0 are removed from the spring mask.
 // All use gpu_full_screen.vert.
