@@ -48,18 +48,19 @@ inline agreement_case with_integrator(agreement_case c, integrator_kind integrat
 // r after the integrator), and a decision that a rounding could flip makes the two paths part
 // (a particle in contact on one, not on the other, its inward velocity removed on one only), so
 // the case is chosen where every decision is far from the surface:
-//   - semi-implicit: the cloth lands on the sphere between steps 99 and 101, everywhere at once,
-//     and lies on it for 200 steps; every particle lies on it, pressed in by gravity, by
-//     dt^2 g cos(theta) = 3.1e-5 m (theta <= 20 degrees) or more per step, none where the cloth
-//     leaves it (there is no such rim: the sphere is wider than the cloth). Nearest decision to
-//     the surface: 3.1e-5 m (step 204), three times the comparison's position tolerance.
+//   - semi-implicit: the cloth lands on the sphere from step 99, the middle first, and lies on
+//     it to the end (step 300), every particle pressed in by gravity, about dt^2 g cos(theta) =
+//     3.7e-5 m per step (theta <= 20 degrees), with no rim where the cloth would leave it (the
+//     sphere is wider than the cloth). Nearest decision to the surface: 3.1e-5 m (step 204),
+//     three times the comparison's position tolerance.
 //   - explicit: a particle on the sphere moves along it with its old velocity, whose inward part
 //     the contact removed: it ends the next step outside by dt^2 v_t^2 / (2 r) only, which is
 //     below the rounding when it slides slowly, so explicit Euler's resting contact sits on the
-//     decision's boundary at every other step (that made the paths 0.11 m/s apart on an NVIDIA
-//     GPU in an earlier case). The explicit run ends at the step where the cloth first touches
-//     the sphere: the four middle particles, 1.3e-3 m inside it or more; every other decision
-//     (all steps) is 1.3e-3 m from the surface or more.
+//     decision's boundary at every other step, and a flip leaves one path with the inward
+//     velocity dt a_n that the other removed (0.1 m/s and more for a cloth pulled onto the
+//     sphere: other_roundings_test.cpp). The explicit run ends at the step where the cloth first
+//     touches the sphere: the four middle particles, 1.3e-3 m inside it or more; every other
+//     decision (all steps) is 1.3e-3 m from the surface or more.
 // The centre and radius are floats exactly (the GPU's uniforms): z = -(2 + 190/1024) m.
 inline constexpr glm::dvec3 sphere_centre = {0.0, 0.0, -2.185546875};  // m
 inline constexpr double sphere_radius = 2.0;                           // m

@@ -116,9 +116,10 @@ TEST(SolutionGpuTolerances, AFloatClothOfOtherRoundingsStaysWithinThemInEveryCas
   }
 }
 
-// The case the sphere's replaced (a free cloth dragged by a corner onto a sphere of radius
-// 0.28 m, explicit): on an NVIDIA GPU both paths ended 0.11 m/s from the CPU, a particle resting
-// on the sphere in contact on one side and not on the other. The emulation sees it too.
+// A case on the contact's boundary (a free cloth dragged by a corner onto a sphere of radius
+// 0.28 m, explicit: agreement_cases.hpp says why): a particle resting on the sphere is in contact
+// on one path and not on the other, and they end 0.1 m/s apart, as both GPU paths did on an
+// NVIDIA GPU. The emulation sees it.
 TEST(SolutionGpuTolerances, TheEmulationFindsTheFlippedContactOfACaseOnTheBoundary) {
   agreement_case on_the_boundary = {"SphereDrag", agreement_cloth()};
   cloth_parameters& p = on_the_boundary.parameters;
