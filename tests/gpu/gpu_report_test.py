@@ -36,7 +36,7 @@ check(any(line.startswith("GPU tests: ") and " passed" in line for line in lines
 agreement = [line for line in lines if "agreement with the CPU" in line]
 check(len(agreement) == 1 and agreement[0].count("of tolerance") >= 1,
       "the table has the agreement of the paths with the CPU")
-headless = [line for line in lines if line.startswith("headless N=16")]
+headless = [line for line in lines if line.startswith("headless N=16, 300 steps")]
 check(len(headless) == 1 and "(bound" in headless[0], "the table compares headless runs")
 speed = [line for line in lines if line.startswith("us per step, N=64")]
 check(len(speed) == 2, "the table has the benchmark's two rows at N = 64")
