@@ -2,7 +2,13 @@
 // the lab's readable code, double precision), step/cpu-parallel/N (cloth_parallel::step, the
 // threaded, vectorised path, double precision, all cores) and step/gpu/N (gpu_cloth::step,
 // fragment shaders, single precision) and step/gpu-compute/N (gpu_cloth_compute, compute
-// shaders)? Each reports steps/s and the time per spring.
+// shaders)? Each reports steps/s and the time per spring. step/gpu* waits for the GPU after
+// every step (glFinish): the latency of one step. batch/gpu*/N runs 100 steps per batch and
+// waits once, as a headless run does: the GPU's throughput, its steps pipelined.
+// Every benchmark warms up before it is timed (the library's warm-up, 0.2 s unless
+// --benchmark_min_warmup_time says otherwise); the GPU paths, whose clock rises under load (on an
+// H200 the first run at 2048^2 read 22 ms per step, the next 5 ms), also until two timings agree
+// (warm_up_until_steady).
 // The GPU step runs in an off-screen context chosen as clothlab chooses it (--gl auto|egl|osmesa,
 // docs/cli.md): clothlab_bench holds an OSMesa context, clothlab_bench_egl (built beside it from
 // this file) an EGL one, and the run is handed to the other one when the choice asks for it. On
@@ -11,10 +17,13 @@
 // Both run the default cloth (two pinned corners, ground) for N x N particles.
 #include <benchmark/benchmark.h>
 
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -35,10 +44,11 @@ clothlab::cloth_parameters cloth_of_size(int n) {
   return p;
 }
 
-// steps/s, and the time per spring (each spring of the three families counted once).
-void count_steps(benchmark::State& state, int n) {
+// steps/s, and the time per spring (each spring of the three families counted once), for
+// steps_per_iteration steps per iteration of the benchmark's loop.
+void count_steps(benchmark::State& state, int n, int steps_per_iteration = 1) {
   const double springs = 2.0 * n * (n - 1) + 2.0 * (n - 1) * (n - 1) + 2.0 * n * (n - 2);
-  const auto steps = static_cast<double>(state.iterations());
+  const auto steps = static_cast<double>(state.iterations()) * steps_per_iteration;
   state.counters["steps/s"] = benchmark::Counter(steps, benchmark::Counter::kIsRate);
   state.counters["s/spring"] = benchmark::Counter(
       steps * springs, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
@@ -85,45 +95,86 @@ clothlab::gl_context* offscreen_context() {
   return context.get();
 }
 
-void gpu_step(benchmark::State& state) {
-  if (offscreen_context() == nullptr) {
-    state.SkipWithError("no off-screen OpenGL context");
-    return;
+// Runs `run_and_wait(count)` (count steps, then waiting for the GPU) in blocks of at least 20 ms
+// until two blocks in a row agree within 5 % on the time per step, or for 3 s at most: the GPU's
+// clock has then risen to what the benchmark will measure.
+template <typename RunAndWait>
+void warm_up_until_steady(RunAndWait run_and_wait) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  double previous = 0.0;  // s per step of the last block
+  while (std::chrono::duration<double>(clock::now() - start).count() < 3.0) {
+    const auto block_start = clock::now();
+    int steps = 0;
+    double seconds = 0.0;
+    while (seconds < 0.02) {
+      run_and_wait(1);
+      ++steps;
+      seconds = std::chrono::duration<double>(clock::now() - block_start).count();
+    }
+    const double per_step = seconds / steps;
+    if (previous > 0.0 && std::abs(per_step - previous) <= 0.05 * previous)
+      return;
+    previous = per_step;
   }
-  const clothlab::cloth_parameters p = cloth_of_size(static_cast<int>(state.range(0)));
-  clothlab::spring_mesh cloth(p);
-  clothlab::gpu_cloth gpu;
-  std::string error;
-  if (!gpu.load(cloth, error)) {
-    state.SkipWithError(error.c_str());
-    return;
-  }
-  for (auto _ : state) {
-    gpu.step(p);
-    glFinish();  // count the rendering, not only its submission
-  }
-  count_steps(state, static_cast<int>(state.range(0)));
 }
 
-void gpu_compute_step(benchmark::State& state) {
-  if (offscreen_context() == nullptr) {
-    state.SkipWithError("no off-screen OpenGL context");
-    return;
+// One benchmark's GPU path, loaded with the default cloth of size n: its run(p, count), then
+// glFinish. Path: gpu_cloth or gpu_cloth_compute.
+template <typename Path>
+struct loaded_gpu_path {
+  clothlab::cloth_parameters parameters;
+  Path path;
+  bool loaded = false;
+
+  loaded_gpu_path(benchmark::State& state, int n) : parameters(cloth_of_size(n)) {
+    if (offscreen_context() == nullptr) {
+      state.SkipWithError("no off-screen OpenGL context");
+      return;
+    }
+    const clothlab::spring_mesh cloth(parameters);
+    std::string error;
+    if (!path.load(cloth, error)) {
+      state.SkipWithError(error.c_str());
+      return;
+    }
+    loaded = true;
+    // Once per path and size: the library calls a benchmark again for each count of
+    // iterations it tries, and the GPU is warm by then.
+    static std::set<int> warmed_up;
+    if (warmed_up.insert(n).second)
+      warm_up_until_steady([this](int count) { run_and_wait(count); });
   }
+  void run_and_wait(int count) {
+    path.run(parameters, count);
+    glFinish();  // count the GPU's work, not only its submission
+  }
+};
+
+// One step, then waiting for it: step/gpu/N and step/gpu-compute/N.
+template <typename Path>
+void gpu_step(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const clothlab::cloth_parameters p = cloth_of_size(n);
-  clothlab::spring_mesh cloth(p);
-  clothlab::gpu_cloth_compute gpu;
-  std::string error;
-  if (!gpu.load(cloth, error)) {
-    state.SkipWithError(error.c_str());
+  loaded_gpu_path<Path> gpu(state, n);
+  if (!gpu.loaded)
     return;
-  }
-  for (auto _ : state) {
-    gpu.run(p);
-    glFinish();
-  }
+  for (auto _ : state)
+    gpu.run_and_wait(1);
   count_steps(state, n);
+}
+
+// Steps in batches, waiting once per batch: batch/gpu/N and batch/gpu-compute/N.
+constexpr int steps_per_batch = 100;
+
+template <typename Path>
+void gpu_batch(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  loaded_gpu_path<Path> gpu(state, n);
+  if (!gpu.loaded)
+    return;
+  for (auto _ : state)
+    gpu.run_and_wait(steps_per_batch);
+  count_steps(state, n, steps_per_batch);
 }
 
 }  // namespace
@@ -137,8 +188,14 @@ BENCHMARK(cpu_step)
     ->Range(64, 1024)
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK(gpu_step)
+BENCHMARK(gpu_step<clothlab::gpu_cloth>)
     ->Name("step/gpu")
+    ->RangeMultiplier(2)
+    ->Range(64, 2048)
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(gpu_batch<clothlab::gpu_cloth>)
+    ->Name("batch/gpu")
     ->RangeMultiplier(2)
     ->Range(64, 2048)
     ->UseRealTime()
@@ -158,7 +215,12 @@ void register_optional_paths() {
                  clothlab::cloth_parallel::unavailable_reason());
   }
   if (std::filesystem::exists(clothlab::shader_path("gpu_compute_step.comp"))) {
-    benchmark::RegisterBenchmark("step/gpu-compute", gpu_compute_step)
+    benchmark::RegisterBenchmark("step/gpu-compute", gpu_step<clothlab::gpu_cloth_compute>)
+        ->RangeMultiplier(2)
+        ->Range(64, 2048)
+        ->UseRealTime()
+        ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("batch/gpu-compute", gpu_batch<clothlab::gpu_cloth_compute>)
         ->RangeMultiplier(2)
         ->Range(64, 2048)
         ->UseRealTime()
@@ -196,6 +258,12 @@ int main(int argc, char** argv) {
 #else
   // A build with one off-screen context (or a hidden window's): the run is here, whatever --gl.
 #endif
+  // The library's warm-up before every benchmark, unless the command line sets its own.
+  bool warm_up_given = false;
+  for (const std::string& argument : others)
+    warm_up_given = warm_up_given || argument.rfind("--benchmark_min_warmup_time", 0) == 0;
+  if (!warm_up_given)
+    others.push_back("--benchmark_min_warmup_time=0.2");
   std::vector<char*> arguments;
   for (std::string& argument : others)
     arguments.push_back(argument.data());

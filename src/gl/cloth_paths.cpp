@@ -175,13 +175,14 @@ void cloth_paths::copy_compute_state_to_textures() {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     compute_texture_size_ = n;
   }
+  const GLuint normal_buffer = gpu_compute_.normal_buffer();  // (computed if not yet)
 #if !defined(CLOTHLAB_GL_WEB)  // (the web build has no compute path, nor OpenGL 4.3's barriers)
   glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);  // after the compute shaders' writes
 #endif
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   const std::pair<GLuint, GLuint> copies[] = {
       {gpu_compute_.position_buffer(), compute_textures_.position},
-      {gpu_compute_.normal_buffer(), compute_textures_.normal}};
+      {normal_buffer, compute_textures_.normal}};
   for (const auto& [buffer, texture] : copies) {
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
     glBindTexture(GL_TEXTURE_2D, texture);

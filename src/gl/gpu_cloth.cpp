@@ -13,13 +13,15 @@
 // vertex shader fetches each vertex's position and normal from these textures
 // (renderer::draw_from_textures).
 //
-// One step, two full-screen passes (shaders/), and a third when the cloth tears:
+// One step, one full-screen pass (shaders/), a second for the normals when they are used, and a
+// third when the cloth tears:
 //   1. gpu_step.frag (questions 12, 13): reads position, velocity and normal; sums the forces of
 //      the particle's own up to 12 springs (structural, shear, bending) and the wind, then runs
 //      the integrator and the ground contact; writes the new position and the new velocity
 //      (two render targets) into the other copy of each: positions and velocities ping-pong.
-//   2. gpu_normal.frag: the normals of the new positions (central differences), so that the
-//      renderer and the next step's wind see the normals of the current positions.
+//   2. gpu_normal.frag: the normals of the current positions (central differences), run only
+//      when they are used: before a step with wind (its force needs them), and when
+//      normal_texture() is asked for (the renderer, once per drawn frame).
 //   3. gpu_tear.frag (tearing, an addition, only with tear_strain > 0): the springs that the new
 //      positions stretch beyond (1 + eps) L0 are removed from the spring mask.
 // All use gpu_full_screen.vert.
@@ -222,10 +224,10 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
   write_ = 1;
   mask_read_ = 0;
   pending_checks_ = 0;  // those of another state
+  normals_current_ = false;
   grid_size_ = n;
   normal_program_.use();
   glUniform1i(normal_program_.uniform("grid_size"), n);
-  compute_normals();
   return true;
 }
 
@@ -233,9 +235,19 @@ void gpu_cloth::compute_normals() {
   glBindFramebuffer(GL_FRAMEBUFFER, normal_framebuffer_);
   normal_program_.use();
   bind_texture(0, position_[read_]);
-  glBindVertexArray(empty_vertex_array_);
-  saved_gl_state::set_pass_state();
-  draw_full_screen_pass(grid_size_);
+  draw_full_screen_pass();
+  normals_current_ = true;
+}
+
+GLuint gpu_cloth::normal_texture() {
+  if (is_loaded() && !normals_current_) {
+    saved_gl_state saved;
+    saved_gl_state::set_pass_state();
+    glBindVertexArray(empty_vertex_array_);
+    glViewport(0, 0, grid_size_, grid_size_);
+    compute_normals();
+  }
+  return normal_;
 }
 
 void gpu_cloth::step(const cloth_parameters& p) {
@@ -254,14 +266,19 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
     throw std::invalid_argument("gpu_cloth::step: " + error);
   if (count < 1)
     return 0;
-  // Once per batch: the caller's GL state saved, the uniforms that changed set (the samplers'
-  // units and the normal pass's N were set by load).
+  // Once per batch: the caller's GL state saved, the state every pass shares set (the N x N
+  // viewport, the normals on unit 2, the spring mask on unit 3), the uniforms that changed set
+  // (the samplers' units and the normal pass's N were set by load).
   saved_gl_state saved;
   saved_gl_state::set_pass_state();
   glBindVertexArray(empty_vertex_array_);
+  glViewport(0, 0, grid_size_, grid_size_);
+  bind_texture(2, normal_);
+  bind_texture(3, spring_mask_[mask_read_]);
 
   step_program_.use();
   step_uniforms_.set(p, grid_size_, rest_length_);
+  const bool wind = p.wind_strength != 0.0;  // the only force that needs the normals
   const bool tear = p.tear_strain > 0.0;
   if (tear) {
     const std::array<float, 3> tear_length = tear_lengths(p.tear_strain, rest_length_);
@@ -294,25 +311,27 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
       queries_.push_back(query);
     }
   }
+  // Only one pass per step without wind, tearing or check: its program stays in use.
+  const bool one_pass = !wind && !tear && !check;
+  step_program_.use();
 
   for (int s = 0; s < count; ++s) {
+    // Pass 2 of the previous step, when this step's wind needs it: the normals of the current
+    // positions.
+    if (wind && !normals_current_)
+      compute_normals();
+
     // Pass 1: forces, integrator and contacts, from copy read_ into copy write_.
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_[write_]);
-    step_program_.use();
+    if (!one_pass)
+      step_program_.use();
     bind_texture(0, position_[read_]);
     bind_texture(1, velocity_[read_]);
-    bind_texture(2, normal_);  // the normals of the positions at the start of the step
-    bind_texture(3, spring_mask_[mask_read_]);  // the springs not torn
-    draw_full_screen_pass(grid_size_);
+    draw_full_screen_pass();
 
     // Ping-pong: the copy just written becomes the current state, the old one the next target.
     std::swap(read_, write_);
-
-    // Pass 2: the normals of the new positions, for the renderer and the next step's wind.
-    glBindFramebuffer(GL_FRAMEBUFFER, normal_framebuffer_);
-    normal_program_.use();
-    bind_texture(0, position_[read_]);
-    draw_full_screen_pass(grid_size_);
+    normals_current_ = false;  // they are those of the old positions
 
     // Pass 3 (tearing, last in the step): the springs the new positions overstretch are
     // removed, from mask copy mask_read_ into the other one, which becomes the current one.
@@ -320,9 +339,9 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
       glBindFramebuffer(GL_FRAMEBUFFER, mask_framebuffer_[1 - mask_read_]);
       tear_program_.use();
       bind_texture(0, position_[read_]);
-      bind_texture(3, spring_mask_[mask_read_]);
-      draw_full_screen_pass(grid_size_);
+      draw_full_screen_pass();
       mask_read_ = 1 - mask_read_;
+      bind_texture(3, spring_mask_[mask_read_]);
     }
 
     // The divergence check of this step: a query says whether any fragment (particle) passed,
@@ -335,7 +354,7 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
       bind_texture(1, velocity_[read_]);
       glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
       glBeginQuery(GL_ANY_SAMPLES_PASSED, queries_[static_cast<std::size_t>(s)]);
-      draw_full_screen_pass(grid_size_);
+      draw_full_screen_pass();
       glEndQuery(GL_ANY_SAMPLES_PASSED);
       glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }

@@ -88,12 +88,15 @@ class gpu_cloth {
   int grid_size() const { return grid_size_; }  // N of the last successful load, 0 before
   // The textures of the current state (they change at every step: ask after stepping).
   GLuint position_texture() const { return position_[read_]; }
-  GLuint normal_texture() const { return normal_; }
+  // The normals of the current positions: computed here (one pass) unless a step's wind needed
+  // them already; the steps compute them only for the wind.
+  GLuint normal_texture();
   GLuint spring_mask_texture() const { return spring_mask_[mask_read_]; }  // GL_R32UI
 
  private:
   void release();
-  void compute_normals();  // pass 2: normal_ from position_[read_]
+  // Pass 2: normal_ from position_[read_], in the passes' state (viewport, vertex array) set.
+  void compute_normals();
 
   int grid_size_ = 0;
   std::array<float, 3> rest_length_{};  // L0 of the structural, shear, bending springs: h, h√2, 2h
@@ -127,6 +130,7 @@ class gpu_cloth {
   // The normals are computed from the positions alone, never from themselves: one copy suffices.
   GLuint normal_ = 0;
   GLuint normal_framebuffer_ = 0;
+  bool normals_current_ = false;  // normal_ holds the normals of position_[read_]
 };
 
 }  // namespace clothlab

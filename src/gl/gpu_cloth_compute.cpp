@@ -26,6 +26,9 @@ bool gpu_cloth_compute::load(const spring_mesh&, std::string& error) {
 int gpu_cloth_compute::run(const cloth_parameters&, int, double) {
   throw std::logic_error("gpu_cloth_compute::run called before a successful load");
 }
+GLuint gpu_cloth_compute::normal_buffer() {
+  return 0;
+}
 void gpu_cloth_compute::read_state(spring_mesh&) const {
   throw std::logic_error("gpu_cloth_compute::read_state called before a successful load");
 }
@@ -124,17 +127,31 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
   spring_masks(cloth, masks);  // the springs the CPU cloth still has
   spring_mask_ = create_buffer(masks);
   read_ = 0;
+  normals_current_ = false;
   grid_size_ = cloth.grid_size();
   tear_program_.use();
   glUniform1i(tear_program_.uniform("grid_size"), grid_size_);
-  // The normals of the initial positions.
   normal_program_.use();
   glUniform1i(normal_program_.uniform("grid_size"), grid_size_);
+  return true;
+}
+
+void gpu_cloth_compute::compute_normals() {
+  normal_program_.use();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
   glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  return true;
+  normals_current_ = true;
+}
+
+GLuint gpu_cloth_compute::normal_buffer() {
+  if (is_loaded() && !normals_current_) {
+    const saved_gl_state saved_state;  // the caller's program
+    const saved_storage_buffer saved_buffer;
+    compute_normals();
+  }
+  return normal_;
 }
 
 int gpu_cloth_compute::run(const cloth_parameters& given, int count, double speed_bound) {
@@ -158,17 +175,22 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
     sent_speed_bound_ = bound;
   }
   if (check) {
-    // The counters of this batch, zeroed (the array is kept between batches).
-    std::vector<std::uint32_t>& zeros = diverged_counts_;
-    zeros.assign(static_cast<std::size_t>(count), 0u);
+    // One counter per step of this batch, zeroed on the GPU; the buffer grows when a batch is
+    // longer than every earlier one.
+    const auto bytes = static_cast<GLsizeiptr>(count * sizeof(std::uint32_t));
     if (diverged_ == 0)
       glGenBuffers(1, &diverged_);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, diverged_);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(zeros.size() * 4), zeros.data(),
-                 GL_DYNAMIC_READ);
+    if (bytes > diverged_capacity_) {
+      glBufferData(GL_SHADER_STORAGE_BUFFER, bytes, nullptr, GL_DYNAMIC_READ);
+      diverged_capacity_ = bytes;
+    }
+    glClearBufferSubData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, 0, bytes, GL_RED_INTEGER,
+                         GL_UNSIGNED_INT, nullptr);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, diverged_);
   }
+  const bool wind = p.wind_strength != 0.0;  // the only force that needs the normals
   const bool tear = p.tear_strain > 0.0;
   if (tear) {
     const std::array<float, 3> tear_length = tear_lengths(p.tear_strain, rest_length_);
@@ -178,34 +200,43 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
       sent_tear_length_ = tear_length;
     }
   }
+  // Bound once per batch: the normals and the spring mask (updated in place).
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, spring_mask_);
+  // Only one dispatch per step without wind or tearing: its program stays in use.
+  const bool one_pass = !wind && !tear;
+  step_program_.use();
   for (int s = 0; s < count; ++s) {
+    // The normals of the current positions, when this step's wind needs them.
+    if (wind && !normals_current_)
+      compute_normals();
+
     const int write = 1 - read_;
-    step_program_.use();
-    glUniform1i(step_program_.uniform("step_index"), s);
+    if (!one_pass)
+      step_program_.use();
+    if (check)
+      glUniform1i(step_program_.uniform("step_index"), s);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, velocity_[read_]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, position_[write]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, velocity_[write]);
     glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     read_ = write;  // ping-pong: the copy just written is the current state
+    normals_current_ = false;
 
-    normal_program_.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
-    glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
-    // Tearing, last in the step: from the new positions (binding 0), into the mask.
+    // Tearing, last in the step: from the new positions, into the mask.
     if (tear) {
       tear_program_.use();
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
       glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   if (!check)
     return 0;
-  std::vector<std::uint32_t>& counts = diverged_counts_;  // count of them, from above
+  std::vector<std::uint32_t>& counts = diverged_counts_;
+  counts.resize(static_cast<std::size_t>(count));
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, diverged_);
   glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(counts.size() * 4),

@@ -1,10 +1,11 @@
 // The compute-shader GPU path of the cloth (--backend gpu-compute): the model of
 // docs/model.md in single precision, like gpu_cloth, but in OpenGL 4.3 compute shaders over
 // shader storage buffers (one vec4 per particle, particle k = ku + N kv at element k) instead of
-// fragment shaders over textures: no rasterisation, no framebuffer. One step, two dispatches:
+// fragment shaders over textures: no rasterisation, no framebuffer. One step, one dispatch:
 // shaders/gpu_compute_step.comp (forces, integrator, sphere, ground) from copy read_ into copy
-// write_ of the positions and velocities, which then swap, and shaders/gpu_compute_normal.comp
-// (the normals of the new positions), and, when the cloth tears, shaders/gpu_compute_tear.comp
+// write_ of the positions and velocities, which then swap; before it, when the wind needs them,
+// shaders/gpu_compute_normal.comp (the normals of the current positions, also computed when
+// normal_buffer() is asked for); after it, when the cloth tears, shaders/gpu_compute_tear.comp
 // (the springs the new positions overstretch leave the spring mask, a storage buffer of one word
 // per particle, gpu_cloth.hpp). It runs what gpu_cloth runs (supports() is the same).
 // Needs a 4.3 context (the off-screen ones ask for it); load() refuses an older one by name.
@@ -52,11 +53,15 @@ class gpu_cloth_compute {
   // The buffers of the current state (one vec4 per particle, k = ku + N kv; positions' w: 1 if
   // pinned), e.g. for the window to copy into textures and draw without reading back.
   GLuint position_buffer() const { return position_[read_]; }
-  GLuint normal_buffer() const { return normal_; }
+  // The normals of the current positions: computed here (one dispatch) unless a step's wind
+  // needed them already; the steps compute them only for the wind.
+  GLuint normal_buffer();
   GLuint spring_mask_buffer() const { return spring_mask_; }  // one uint per particle
 
  private:
   void release();
+  // The normal pass: normal_ from position_[read_] (its program left in use).
+  void compute_normals();
 
   int grid_size_ = 0;
   std::array<float, 3> rest_length_{};
@@ -72,8 +77,10 @@ class gpu_cloth_compute {
   GLuint normal_ = 0;
   GLuint spring_mask_ = 0;  // one word per particle, updated in place by the tear pass
   mutable std::vector<std::uint32_t> mask_readback_;
+  bool normals_current_ = false;                // normal_ holds the normals of position_[read_]
   GLuint diverged_ = 0;                         // one counter per step of a checked batch
-  std::vector<std::uint32_t> diverged_counts_;  // their values, uploaded and read back
+  GLsizeiptr diverged_capacity_ = 0;            // its size, bytes
+  std::vector<std::uint32_t> diverged_counts_;  // their values, read back
   mutable std::vector<float> readback_;
 };
 

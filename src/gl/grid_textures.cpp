@@ -61,9 +61,7 @@ void bind_texture(GLuint unit, GLuint texture) {
   glBindTexture(GL_TEXTURE_2D, texture);
 }
 
-// Runs the bound program once per texel of the bound N x N framebuffer.
-void draw_full_screen_pass(int n) {
-  glViewport(0, 0, n, n);
+void draw_full_screen_pass() {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 

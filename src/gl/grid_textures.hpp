@@ -30,8 +30,9 @@ GLuint create_framebuffer(std::initializer_list<GLuint> targets, std::string& er
 // Binds `texture` (2D) to texture unit `unit`.
 void bind_texture(GLuint unit, GLuint texture);
 
-// Runs the bound program once per texel of the bound N x N framebuffer.
-void draw_full_screen_pass(int n);
+// Runs the bound program once per texel of the bound N x N framebuffer (the viewport set to
+// N x N by the caller, once for all the passes of a batch).
+void draw_full_screen_pass();
 
 // Reads one texel (x, y) of attachment `attachment` of `framebuffer` into 4 floats, leaving the
 // caller's read framebuffer and pixel pack buffer bound as they were.

@@ -1,6 +1,7 @@
 // The GPU cloth (handout section 5) against the CPU cloth: both implement docs/model.md, the
 // GPU in single precision, the CPU in double precision, so the same run on both paths must stay
-// within a small distance. Runs in an off-screen OSMesa context (llvmpipe).
+// within the reach of float rounding (single_precision.hpp). Runs in an off-screen context
+// (OSMesa or EGL: llvmpipe here, a real GPU's driver where there is one).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,32 +11,20 @@
 #include <string>
 #include <vector>
 
+#include "agreement_cases.hpp"
 #include "core/spring_mesh.hpp"
 #include "gl/cloth_paths.hpp"
 #include "gl/gl.hpp"
 #include "gl/gl_context.hpp"
 #include "gl/gpu_cloth.hpp"
 #include "gl/gpu_cloth_compute.hpp"
+#include "single_precision.hpp"
 
 namespace clothlab {
 namespace {
 
-// Agreement tolerances: the largest |x_gpu - x_cpu| (and |v_gpu - v_cpu|) over every coordinate
-// of every particle, after a run of the same cloth on both paths. Single precision rounds
-// positions of order 1 m to about 6e-8 m and the rounding errors of the forces accumulate:
-// measured on llvmpipe (Mesa 22.3), N = 12, the largest differences are 2.2e-6 m and 4.6e-5 m/s
-// after 300 semi-implicit steps, 1.6e-6 m and 2.3e-4 m/s after 100 explicit steps (the test
-// prints them for each case). The tolerances leave a margin of about 4 over them.
-constexpr double position_tolerance = 1e-5;  // m
-constexpr double velocity_tolerance = 1e-3;  // m/s
-// Semi-implicit Euler is stable at dt = 0.002 s: 300 steps, 0.6 s of simulated time.
-constexpr int semi_implicit_steps = 300;
-// Explicit Euler is unstable for this stiff cloth (handout question 4): its fastest modes grow by
-// about 10 every 50 steps, and so do the rounding differences between the two paths (1e-4 m
-// after 200 steps, 0.1 m after 300, when the CPU run itself has blown up to 50 m/s). The
-// comparison is meaningful for 100 steps, 0.2 s.
-constexpr int explicit_steps = 100;
-constexpr int grid_size = 12;
+// The agreement cases and their tolerances: agreement_cases.hpp, single_precision.hpp.
+constexpr int grid_size = agreement_grid_size;
 
 class GpuCloth : public ::testing::Test {
  protected:
@@ -54,10 +43,7 @@ class GpuCloth : public ::testing::Test {
 gl_context* GpuCloth::context_ = nullptr;
 
 cloth_parameters small_cloth() {
-  cloth_parameters p;
-  p.grid_size = grid_size;
-  p.ground_enabled = false;
-  return p;
+  return agreement_cloth();
 }
 
 double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
@@ -72,85 +58,63 @@ double max_position_difference(const spring_mesh& a, const spring_mesh& b) {
 }
 
 struct run_difference {
-  double position;          // m
-  double velocity;          // m/s
-  int particles_on_ground;  // in the CPU run, at the end
+  double position;                     // m
+  double velocity;                     // m/s
+  single_precision::bounds tolerance;  // for the run's steps and coordinates
+  int particles_on_ground;             // in the CPU run, at the end
+  int particles_on_sphere;             // in the CPU run, at the end
 };
 
-// Runs `steps` steps of the cloth of cpu_parameters on the CPU and of the same initial cloth with
-// gpu_parameters on the GPU; returns the largest differences at the end.
-run_difference compare_runs(const cloth_parameters& cpu_parameters,
-                            const cloth_parameters& gpu_parameters, int steps) {
-  spring_mesh cpu(cpu_parameters);
-  spring_mesh gpu_result(cpu_parameters);
+// The CPU's run of c and the state a GPU path reached for it: the largest differences, and the
+// tolerance for the coordinates the CPU run reached.
+run_difference difference_of_runs(const agreement_case& c, const spring_mesh& cpu, double largest,
+                                  const spring_mesh& gpu_result) {
+  int on_ground = 0;
+  for (std::size_t k = 0; k < cpu.particles().size(); ++k) {
+    on_ground += cpu.particles().position[3 * k + 2] == c.parameters.ground_height;
+  }
+  return {max_position_difference(cpu, gpu_result),
+          max_difference(cpu.particles().velocity, gpu_result.particles().velocity),
+          tolerance_of(c, largest), on_ground, particles_on_sphere(cpu)};
+}
+
+// Runs c on the CPU and the same initial cloth, with gpu_parameters, on the fragment path.
+run_difference compare_runs(const agreement_case& c, const cloth_parameters& gpu_parameters) {
+  spring_mesh cpu(c.parameters);
+  spring_mesh gpu_result(c.parameters);
   gpu_cloth gpu;
   std::string error;
   EXPECT_TRUE(gpu.load(cpu, error)) << error;
-  for (int s = 0; s < steps; ++s) {
+  double largest = largest_coordinate(cpu);
+  for (int s = 0; s < c.steps; ++s) {
     cpu.step();
     gpu.step(gpu_parameters);
+    largest = largest_coordinate(cpu, largest);
   }
   gpu.read_state(gpu_result);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   EXPECT_TRUE(cpu.particles().is_finite());
   EXPECT_TRUE(gpu_result.particles().is_finite());
-  int on_ground = 0;
-  for (std::size_t k = 0; k < cpu.particles().size(); ++k) {
-    on_ground += cpu.particles().position[3 * k + 2] == cpu_parameters.ground_height;
-  }
-  return {max_position_difference(cpu, gpu_result),
-          max_difference(cpu.particles().velocity, gpu_result.particles().velocity), on_ground};
+  return difference_of_runs(c, cpu, largest, gpu_result);
 }
 
-// The agreement cases: pins without wind, wind, ground contact, each with both integrators.
-struct agreement_case {
-  const char* name;
-  cloth_parameters parameters;
-  int steps = 0;
-  // Contacts with the sphere are decided per particle: one just at its surface can be in
-  // contact on one path and not on the other, which the later steps carry on (measured, N = 12,
-  // semi-implicit: 8e-7 m and 4e-5 m/s after 200 steps, then 5e-5 m and 6e-3 m/s after 250
-  // steps, when such a particle flips). Such cases allow 4 times that.
-  double position_tolerance = ::clothlab::position_tolerance;  // m
-  double velocity_tolerance = ::clothlab::velocity_tolerance;  // m/s
-};
-
-agreement_case with_integrator(agreement_case c, integrator_kind integrator) {
-  c.parameters.dynamics.integrator = integrator;
-  c.steps = integrator == integrator_kind::explicit_euler ? explicit_steps : semi_implicit_steps;
-  return c;
-}
-
-std::vector<agreement_case> agreement_cases() {
-  cloth_parameters pinned = small_cloth();  // the two corners pinned, no wind, no ground
-
-  cloth_parameters wind = small_cloth();
-  wind.wind_strength = 4.0;
-  wind.wind_direction = {1.0, 2.0, 3.0};  // not unit: both paths normalise it
-
-  // Hanging from its corners, the free edge swings down onto a ground close below.
-  cloth_parameters ground = small_cloth();
-  ground.ground_enabled = true;
-  ground.ground_height = -0.1;
-  ground.wind_strength = 2.0;
-  ground.wind_direction = {0.0, 1.0, 0.0};
-
-  // The additions: a free cloth falls onto a sphere just below it while a corner is dragged.
-  cloth_parameters sphere_drag = small_cloth();
-  sphere_drag.pins = pin_mode::none;
-  sphere_drag.sphere = {.enabled = true, .centre = {0.0, 0.0, -0.3}, .radius = 0.28};
-  sphere_drag.drag = {
-      .enabled = true, .ku = 11, .kv = 11, .target = {0.6, 0.6, 0.2}, .stiffness = 1000.0};
-
-  std::vector<agreement_case> cases;
-  for (integrator_kind integrator :
-       {integrator_kind::semi_implicit, integrator_kind::explicit_euler}) {
-    cases.push_back(with_integrator({"PinsNoWind", pinned}, integrator));
-    cases.push_back(with_integrator({"Wind", wind}, integrator));
-    cases.push_back(with_integrator({"Ground", ground}, integrator));
-    cases.push_back(with_integrator({"SphereDrag", sphere_drag, 0, 2e-4, 2.5e-2}, integrator));
+// The checks of one case on one path, and its line of the test's output.
+void expect_within_tolerance(const char* path, const agreement_case& c,
+                             const run_difference& difference) {
+  const std::string integrator(integrator_name(c.parameters.dynamics.integrator));
+  std::printf(
+      "  %-8s %-10s %-13s after %3d steps: max |p_gpu - p_cpu| = %.2g m (tolerance %.2g), "
+      "max |v_gpu - v_cpu| = %.2g m/s (tolerance %.2g)\n",
+      path, c.name, integrator.c_str(), c.steps, difference.position, difference.tolerance.position,
+      difference.velocity, difference.tolerance.velocity);
+  EXPECT_LE(difference.position, difference.tolerance.position) << c.name << ", " << integrator;
+  EXPECT_LE(difference.velocity, difference.tolerance.velocity) << c.name << ", " << integrator;
+  if (c.parameters.ground_enabled) {  // the case does test the contact
+    EXPECT_GT(difference.particles_on_ground, 0) << c.name << ", " << integrator;
   }
-  return cases;
+  if (c.parameters.sphere.enabled) {
+    EXPECT_GT(difference.particles_on_sphere, 0) << c.name << ", " << integrator;
+  }
 }
 
 // The comparisons with the CPU need the lab's solution on both paths (questions 6 to 9, 12, 13):
@@ -158,27 +122,16 @@ std::vector<agreement_case> agreement_cases() {
 using SolutionGpuCloth = GpuCloth;
 
 TEST_F(SolutionGpuCloth, SameRunsStayWithinTheToleranceOfTheCpu) {
-  for (const agreement_case& c : agreement_cases()) {
-    const std::string integrator(integrator_name(c.parameters.dynamics.integrator));
-    const run_difference difference = compare_runs(c.parameters, c.parameters, c.steps);
-    std::printf(
-        "  %-10s %-13s after %3d steps: max |p_gpu - p_cpu| = %.2g m, "
-        "max |v_gpu - v_cpu| = %.2g m/s\n",
-        c.name, integrator.c_str(), c.steps, difference.position, difference.velocity);
-    EXPECT_LE(difference.position, c.position_tolerance) << c.name << ", " << integrator;
-    EXPECT_LE(difference.velocity, c.velocity_tolerance) << c.name << ", " << integrator;
-    if (c.parameters.ground_enabled) {  // the case does test the contact
-      EXPECT_GT(difference.particles_on_ground, 0) << c.name << ", " << integrator;
-    }
-  }
+  for (const agreement_case& c : agreement_cases())
+    expect_within_tolerance("fragment", c, compare_runs(c, c.parameters));
 }
 
 TEST_F(SolutionGpuCloth, TheComparisonFailsWhenTheGpuRunsAnotherCloth) {
-  const cloth_parameters cpu_parameters = agreement_cases()[0].parameters;
-  cloth_parameters stiffer = cpu_parameters;
+  const agreement_case pinned = agreement_cases()[0];
+  cloth_parameters stiffer = pinned.parameters;
   stiffer.structural_stiffness *= 1.01;  // 1 % stiffer on the GPU only
-  EXPECT_GT(compare_runs(cpu_parameters, stiffer, semi_implicit_steps).position,
-            position_tolerance);
+  const run_difference difference = compare_runs(pinned, stiffer);
+  EXPECT_GT(difference.position, difference.tolerance.position);
 }
 
 TEST_F(SolutionGpuCloth, SwitchingFromCpuToGpuMidRunCarriesTheState) {
@@ -191,14 +144,20 @@ TEST_F(SolutionGpuCloth, SwitchingFromCpuToGpuMidRunCarriesTheState) {
   ASSERT_TRUE(gpu.load(cpu, error)) << error;
   spring_mesh gpu_result(p);
   gpu.read_state(gpu_result);
-  // Loading rounds to float: a relative 2^-24 on coordinates below 1 m.
-  EXPECT_LE(max_position_difference(cpu, gpu_result), 1e-7);
-  for (int s = 0; s < 200; ++s) {
+  // Loading rounds to float: u |x| at most.
+  double largest = largest_coordinate(cpu);
+  EXPECT_LE(max_position_difference(cpu, gpu_result), single_precision::unit_roundoff * largest);
+  constexpr int steps = 200;
+  for (int s = 0; s < steps; ++s) {
     cpu.step();
     gpu.step(p);
+    largest = largest_coordinate(cpu, largest);
   }
   gpu.read_state(gpu_result);
-  EXPECT_LE(max_position_difference(cpu, gpu_result), position_tolerance);
+  // The load's rounding and the steps' (single_precision.hpp).
+  EXPECT_LE(max_position_difference(cpu, gpu_result),
+            single_precision::after(1 + steps, largest, p.dynamics.integrator, p.dynamics.time_step)
+                .position);
 }
 
 TEST_F(SolutionGpuCloth, PinnedParticlesStayExactlyInPlaceWithZeroVelocity) {
@@ -278,22 +237,32 @@ TEST_F(SolutionGpuCloth, NormalTextureHoldsTheNormalsOfTheCurrentPositions) {
   gpu_cloth gpu;
   std::string error;
   ASSERT_TRUE(gpu.load(cpu, error)) << error;
-  for (int s = 0; s < 200; ++s) {
+  constexpr int steps = 200;
+  double largest = largest_coordinate(cpu);
+  for (int s = 0; s < steps; ++s) {
     cpu.step();
     gpu.step(p);
+    largest = largest_coordinate(cpu, largest);
   }
   cpu.compute_normals();
   std::vector<float> texels(4 * cpu.particles().size());
   glBindTexture(GL_TEXTURE_2D, gpu.normal_texture());
   glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texels.data());
   glBindTexture(GL_TEXTURE_2D, 0);
-  double largest = 0.0;
+  double normal_difference = 0.0;
   for (std::size_t k = 0; k < cpu.particles().size(); ++k) {
     for (std::size_t c = 0; c < 3; ++c) {
-      largest = std::max(largest, std::abs(texels[4 * k + c] - cpu.normals()[3 * k + c]));
+      normal_difference =
+          std::max(normal_difference, std::abs(texels[4 * k + c] - cpu.normals()[3 * k + c]));
     }
   }
-  EXPECT_LE(largest, 1e-4);  // unit vectors from positions that agree within 1e-5 m, h = 0.09 m
+  // n = normalize(d_u x d_v), from differences of positions at least h apart: positions within
+  // delta of the CPU's turn d_u and d_v by 2 delta / h at most each, so n by 4 delta / h.
+  const double delta =
+      single_precision::after(steps, largest, p.dynamics.integrator, p.dynamics.time_step).position;
+  const double h = p.side_length / (grid_size - 1);
+  std::printf("  max |n_gpu - n_cpu| = %.2g (tolerance %.2g)\n", normal_difference, 4 * delta / h);
+  EXPECT_LE(normal_difference, 4 * delta / h);
   EXPECT_GT(cpu.normals()[3 * spring_mesh::index(5, 5, grid_size) + 1], 0.01);  // curved
 }
 
@@ -322,11 +291,15 @@ TEST_F(GpuCloth, StepLeavesTheCallersGlStateAsItFoundIt) {
   EXPECT_EQ(polygon_mode[0], GL_LINE);
   glDisable(GL_BLEND);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  // and blending did not leak into the step: the run still agrees with the CPU
+  // and blending did not leak into the step: the run still agrees with the CPU, within the
+  // rounding of the load and of one step
   cloth.step();
   spring_mesh result(p);
   gpu.read_state(result);
-  EXPECT_LE(max_position_difference(cloth, result), 1e-6);
+  EXPECT_LE(max_position_difference(cloth, result),
+            single_precision::after(2, largest_coordinate(cloth), p.dynamics.integrator,
+                                    p.dynamics.time_step)
+                .position);
 }
 
 // cloth_paths::read_normals reads the drawn normal texture through a framebuffer (OpenGL ES, the
@@ -523,17 +496,14 @@ TEST_F(SolutionGpuCompute, SameRunsStayWithinTheToleranceOfTheCpu) {
     spring_mesh result(c.parameters);
     gpu_cloth_compute gpu;
     ASSERT_TRUE(gpu.load(cpu, error)) << error;
-    for (int s = 0; s < c.steps; ++s)
+    double largest = largest_coordinate(cpu);
+    for (int s = 0; s < c.steps; ++s) {
       cpu.step();
+      largest = largest_coordinate(cpu, largest);
+    }
     gpu.run(c.parameters, c.steps);
     gpu.read_state(result);
-    const double position = max_position_difference(cpu, result);
-    const double velocity = max_difference(cpu.particles().velocity, result.particles().velocity);
-    const std::string integrator(integrator_name(c.parameters.dynamics.integrator));
-    std::printf("  compute %-10s %-13s after %3d steps: %.2g m, %.2g m/s\n", c.name,
-                integrator.c_str(), c.steps, position, velocity);
-    EXPECT_LE(position, c.position_tolerance) << c.name << ", " << integrator;
-    EXPECT_LE(velocity, c.velocity_tolerance) << c.name << ", " << integrator;
+    expect_within_tolerance("compute", c, difference_of_runs(c, cpu, largest, result));
   }
 }
 
@@ -550,11 +520,17 @@ TEST_F(SolutionGpuCompute, TheComparisonFailsForAnotherCloth) {
   spring_mesh result(p);
   gpu_cloth_compute gpu;
   ASSERT_TRUE(gpu.load(cpu, error)) << error;
-  for (int s = 0; s < 300; ++s)
+  double largest = largest_coordinate(cpu);
+  for (int s = 0; s < semi_implicit_steps; ++s) {
     cpu.step();
-  gpu.run(stiffer, 300);
+    largest = largest_coordinate(cpu, largest);
+  }
+  gpu.run(stiffer, semi_implicit_steps);
   gpu.read_state(result);
-  EXPECT_GT(max_position_difference(cpu, result), position_tolerance);
+  EXPECT_GT(max_position_difference(cpu, result),
+            single_precision::after(semi_implicit_steps, largest, p.dynamics.integrator,
+                                    p.dynamics.time_step)
+                .position);
 }
 
 }  // namespace

@@ -7,7 +7,7 @@ Usage: test_against_reference.py CLOTHLAB [spring|solution]
 The two implementations add the same terms in a different order, so they may differ in the last
 bits: the test allows a relative difference of 1e-12 (measured: at most 7e-14 after 400 steps),
 far below any physical effect and far above rounding."""
-import csv, os, subprocess, sys, tempfile
+import csv, math, os, subprocess, sys, tempfile
 from reference_model import run
 B = sys.argv[1]
 TOLERANCE = 1e-12
@@ -24,16 +24,36 @@ cases=[
 cases += [
  (['--stage','cloth','--N','7','--steps','400','--pins','none','--sphere','0,0,-0.3,0.25','--sphere-friction','3','--drag','6,6:0.6,0.6,0.3','--drag-stiffness','400'], dict(stage='cloth',steps=400,N=7,pins=False,sphere=(0,0,-0.3,0.25),mus=3.0,drag=(6,6,(0.6,0.6,0.3)),Kd=400.0)),
  (['--stage','cloth','--N','8','--steps','300','--pins','none','--sphere','0,0,-0.2,0.15','--self-collision','0.12'], dict(stage='cloth',steps=300,N=8,pins=False,sphere=(0,0,-0.2,0.15),self_d=0.12)),
- # Tearing (20 of the 50 triangles torn), with a drag soft enough for the GPU paths'
- # single precision to follow (measured: 5.4e-5 relative on llvmpipe, where a drag stiffness of
- # 20000 drifts by 1e-2 even without tearing).
+ # Tearing (20 of the 50 triangles torn).
  (['--stage','cloth','--N','6','--steps','300','--tear-strain','0.1','--drag','5,5:1.5,1.5,0.5','--drag-stiffness','1000'], dict(stage='cloth',steps=300,N=6,tear=0.1,drag=(5,5,(1.5,1.5,0.5)),Kd=1000.0)),
 ]
 # The other paths on the same cloth cases: cpu-parallel in double precision (the same 1e-12),
-# the two GPU paths in single precision (a relative 1e-4: float rounding over hundreds of steps).
+# the two GPU paths in single precision (FLOAT: their bounds below).
+FLOAT = None
 PATHS = [('cpu', TOLERANCE)]
 if len(sys.argv) > 2 and sys.argv[2] == 'solution':
-    PATHS += [('cpu-parallel', TOLERANCE), ('gpu', 1e-4), ('gpu-compute', 1e-4)]
+    PATHS += [('cpu-parallel', TOLERANCE), ('gpu', FLOAT), ('gpu-compute', FLOAT)]
+
+# How far a float path may be from the reference after the case's steps (tests/gpu/
+# single_precision.hpp): each step rounds the coordinates, below P metres, by u P at most
+# (u = 2^-24); the integrator carries a difference G times further per step (semi-implicit: 1;
+# explicit: sqrt(1 + (omega dt)^2) for the stiffest modes, omega = sqrt(4 (K + K_shear) / m));
+# velocities differ by omega times the positions. P: the reference run's largest coordinate.
+def float_bounds(kw, largest):
+    omega = math.sqrt(4 * (kw.get('Ks', 5000.) + kw.get('Ksh', 2000.)) / kw.get('m', 1.0))
+    dt = kw.get('dt', 0.002)
+    growth = math.sqrt(1 + (omega * dt)**2) if kw.get('integ') == 'explicit' else 1.0
+    carried = sum(growth**k for k in range(kw['steps']))
+    position = 2.0**-24 * largest * carried
+    return position, omega * position
+
+# Cases whose run hinges on a decision within a float's rounding of its threshold, which a float
+# path may take otherwise: the sphere case (a contact 7e-9 m from the surface at step 264: the
+# paths part by up to 0.05 m/s in a float emulation) and the tearing case (a spring 1.8e-5
+# relative from tearing at step 265). tests/gpu compares the GPU paths' contacts and tearing
+# with the CPU path (itself checked here) on cases chosen off their thresholds.
+def on_a_threshold(args):
+    return '--sphere' in args or '--tear-strain' in args
 if len(sys.argv) > 2:
     wanted = sys.argv[2]
     cases = [c for c in cases if (c[1]['stage'] == 'spring') == (wanted == 'spring')]
@@ -43,6 +63,8 @@ for backend, tolerance in PATHS:
   for args,kw in cases:
     if backend != 'cpu' and (kw['stage'] != 'cloth' or ('--self-collision' in args and backend != 'cpu-parallel')):
         continue  # the other paths run the cloth; self-collision is the CPU paths'
+    if tolerance is FLOAT and on_a_threshold(args):
+        continue
     run_args = [B,'--headless','--csv',path]+args+['--backend',backend]
     subprocess.run(run_args,check=True,stdout=subprocess.DEVNULL)
     with open(path) as f:
@@ -50,15 +72,24 @@ for backend, tolerance in PATHS:
     ref=run(**kw)
     assert len(rows)==len(ref),(len(rows),len(ref))
     worst=0.0; exact=0; total=0
+    apart=[0.0,0.0]  # the largest |position|, |velocity| difference, m and m/s
     for r,e in zip(rows,ref):
         assert int(r[0])==e[0] and int(r[2])==e[2]
-        for a,b in zip(r[3:],e[3:]):
+        for i,(a,b) in enumerate(zip(r[3:],e[3:])):
             a=float(a); total+=1; exact+= (a==b)
             worst=max(worst,abs(a-b)/max(1.0,abs(b)))
-    ok = worst <= tolerance
+            apart[i//3]=max(apart[i//3],abs(a-b))
+    if tolerance is FLOAT:
+        bounds = float_bounds(kw, max(abs(c) for e in ref for c in e[3:6]))
+        ok = apart[0] <= bounds[0] and apart[1] <= bounds[1]
+        found = (f"max |dp| {apart[0]:.3g} m (tolerance {bounds[0]:.3g}), "
+                 f"max |dv| {apart[1]:.3g} m/s (tolerance {bounds[1]:.3g})")
+    else:
+        ok = worst <= tolerance
+        found = f"max rel diff {worst:.3g}"
     failures += not ok
     checked += 1
-    print('ok  ' if ok else 'FAIL', f"[{backend}]", ' '.join(args), f"max rel diff {worst:.3g}, bitwise equal {exact}/{total}")
+    print('ok  ' if ok else 'FAIL', f"[{backend}]", ' '.join(args), f"{found}, bitwise equal {exact}/{total}")
 os.remove(path)
 os.rmdir(workdir)
 print(f"{checked - failures} passed, {failures} failed")
