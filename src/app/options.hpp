@@ -1,4 +1,4 @@
-// The command line of shared/cli.md, parsed with CLI11. Shared by the headless program and the
+// The command line of docs/cli.md, parsed with CLI11. Shared by the headless program and the
 // window, so that every option means the same in both.
 #pragma once
 
