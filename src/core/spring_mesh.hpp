@@ -15,13 +15,10 @@
 #include "core/parameters.hpp"
 #include "core/particle_system.hpp"
 #include "core/spring.hpp"
+#include "core/spring_family.hpp"
+#include "core/step_phases.hpp"
 
 namespace clothlab {
-
-// The three kinds of springs of the handout's figure 6, each with its own stiffness.
-enum class spring_family { structural, shear, bending };
-inline constexpr std::array<spring_family, 3> all_spring_families = {
-    spring_family::structural, spring_family::shear, spring_family::bending};
 
 class spring_mesh {
  public:
