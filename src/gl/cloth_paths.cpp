@@ -5,17 +5,11 @@
 #include <utility>
 
 #include "core/stability.hpp"
+#include "core/wall_clock.hpp"
 #include "gl/gl_state_guard.hpp"
 #include "gl/shader.hpp"  // shader_path
 
 namespace clothlab {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 cloth_paths::~cloth_paths() {
   if (compute_texture_size_ != 0) {
