@@ -127,15 +127,6 @@ int write_cpu_png(const options& o, run_outputs& out, const Stage& stage) {
   });
 }
 
-// --start 1d, question 2: of v1, only its component along the spring (p1 - p0) is kept, so that
-// the mass moves on the spring's line, the 1D model's motion (the window's "1D start" box).
-void keep_velocity_along_spring(single_spring& stage) {
-  particle_system& particles = stage.particles();
-  const glm::dvec3 axis = particles.get_position(1) - particles.get_position(0);
-  const glm::dvec3 v = particles.get_velocity(1);
-  particles.set_velocity(1, glm::dot(v, axis) / glm::dot(axis, axis) * axis);
-}
-
 // The class of a stage, as a student reads it in src/core/.
 const char* stage_class_name(stage_kind stage) {
   switch (stage) {

@@ -1,10 +1,9 @@
-// What clothlab needs from the cloth beyond the handout's class (spring_mesh.cpp): its
-// parameters at this N, the list of its springs, its normals, the mouse drag, the stability
-// lab's schemes and the constraints of one step. None of it is a question of the lab.
+// The parts of the cloth's step beyond the handout's functions (spring_mesh.cpp): its parameters
+// at this N (question 10), the mouse drag, the stability lab's schemes and the constraints.
+// None of it is a question of the lab; spring_mesh::step (spring_mesh.hpp) calls them in order.
 #include <algorithm>
 
 #include "core/contacts.hpp"
-#include "core/grid_neighbours.hpp"
 #include "core/spring_mesh.hpp"
 
 namespace clothlab {
@@ -13,45 +12,6 @@ cloth_parameters spring_mesh::effective_parameters() const {
   cloth_parameters built = parameters;
   built.grid_size = grid_size_;
   return effective_cloth_parameters(built);
-}
-
-std::array<spring_set, 3> spring_mesh::spring_sets() const {
-  std::array<spring_set, 3> sets{};
-  for (spring_family family : all_spring_families)
-    sets[static_cast<int>(family)] = {springs(family), stiffness(family)};
-  return sets;
-}
-
-// Every spring of figure 6 once, from its end of lower index, with its rest length, the
-// distance of its ends in the flat cloth at rest (drawing, energy, the implicit scheme's
-// Jacobian, tearing); every spring intact.
-void spring_mesh::list_springs() {
-  const int n = grid_size_;
-  std::span<const glm::dvec3> x0 = as_vectors(rest_position_);
-  for (spring_family family : all_spring_families) {
-    std::vector<spring>& list = springs_[static_cast<int>(family)];
-    list.clear();
-    for (int kv = 0; kv < n; ++kv) {
-      for (int ku = 0; ku < n; ++ku) {
-        for (const grid_offset o : family_neighbours(family)) {
-          const int ku2 = ku + o.du;
-          const int kv2 = kv + o.dv;
-          const std::size_t a = index(ku, kv, n);
-          if (ku2 < 0 || ku2 >= n || kv2 < 0 || kv2 >= n || index(ku2, kv2, n) < a)
-            continue;  // outside the grid, or already listed from the other end
-          const std::size_t b = index(ku2, kv2, n);
-          list.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
-                          glm::length(x0[a] - x0[b])});
-        }
-      }
-    }
-  }
-  spring_torn_.assign(spring_slot(particles_.size(), -2, -2), 0);
-}
-
-void spring_mesh::compute_normals() {
-  normals_.resize(particles_.position.size());
-  compute_vertex_normals(grid_size_, particles_.position, normals_);
 }
 
 void spring_mesh::add_drag_force() {
@@ -67,13 +27,12 @@ void spring_mesh::add_drag_force() {
 }
 
 void spring_mesh::integrate_step() {
-  const cloth_parameters used = effective_parameters();
-  const dynamics_parameters& d = used.dynamics;
-  if (d.integrator == integrator_kind::semi_implicit ||
-      d.integrator == integrator_kind::explicit_euler) {
+  const integrator_kind scheme = parameters.dynamics.integrator;
+  if (scheme == integrator_kind::semi_implicit || scheme == integrator_kind::explicit_euler) {
     apply_force();  // question 6
     return;
   }
+  const dynamics_parameters d = effective_parameters().dynamics;  // the mass at this N
   const std::array<spring_set, 3> sets = spring_sets();
   const force_model forces = {sets,
                               [this](std::span<const double> position, std::span<double> force) {
@@ -102,7 +61,7 @@ void spring_mesh::apply_constraints() {
   // In the order of docs/model.md: the sphere (an addition), the ground (question 9),
   // self-collision (an addition), then tearing (an addition). The pins are apply_force's: it
   // never moves a fixed vertex.
-  const double dt = effective_parameters().dynamics.time_step;
+  const double dt = parameters.dynamics.time_step;
   if (parameters.sphere.enabled)
     apply_sphere_contact(parameters.sphere, dt, particles_);
   if (parameters.ground_enabled)  // question 9
@@ -111,26 +70,6 @@ void spring_mesh::apply_constraints() {
     self_collision_.apply(grid_size_, self_collision_distance(parameters), particles_);
   if (parameters.tear_strain > 0.0)
     tear_springs(parameters.tear_strain);
-}
-
-void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal) {
-  auto p = [&](int ku, int kv) {
-    const std::size_t k = 3 * spring_mesh::index(ku, kv, n);
-    return glm::dvec3(position[k], position[k + 1], position[k + 2]);
-  };
-  for (int kv = 0; kv < n; ++kv) {
-    for (int ku = 0; ku < n; ++ku) {
-      // Central differences, one-sided on the border.
-      const glm::dvec3 du = p(std::min(ku + 1, n - 1), kv) - p(std::max(ku - 1, 0), kv);
-      const glm::dvec3 dv = p(ku, std::min(kv + 1, n - 1)) - p(ku, std::max(kv - 1, 0));
-      const glm::dvec3 c = glm::cross(du, dv);
-      const glm::dvec3 unit = c / glm::length(c);
-      const std::size_t k = 3 * spring_mesh::index(ku, kv, n);
-      normal[k] = unit.x;
-      normal[k + 1] = unit.y;
-      normal[k + 2] = unit.z;
-    }
-  }
 }
 
 }  // namespace clothlab
