@@ -2,7 +2,7 @@
 // parameter table (core/parameter_table.hpp): their options, help, ranges and the stage fields
 // they set are read off it in loops; this file adds the options of a run (what to run, the
 // outputs, the sweep) and the checks that combine several options.
-#include "app/options.hpp"
+#include "app/command_line.hpp"
 
 #include <CLI/CLI.hpp>
 

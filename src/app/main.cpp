@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "app/headless.hpp"
-#include "app/options.hpp"
+#include "app/command_line.hpp"
 #include "app/run_control.hpp"
 #include "gl/gl_context.hpp"
 #include "gl/program_choice.hpp"
