@@ -414,14 +414,12 @@ void cloth_parallel::read_state(spring_mesh& cloth) const {
   });
 }
 
-void cloth_parallel::step(const cloth_parameters& given) {
-  if (std::string error; !supports(given, error))
+void cloth_parallel::step(const cloth_parameters& p) {
+  if (std::string error; !supports(p, error))
     throw std::invalid_argument("cloth_parallel::step: " + error);
+  check_effective(p, "cloth_parallel::step");
   if (n_ == 0)
     throw std::logic_error("cloth_parallel::step called before load");
-  cloth_parameters resolved = given;
-  resolved.grid_size = n_;
-  const cloth_parameters p = effective_cloth_parameters(resolved);
   const int n = n_;
 
   step_constants c{};
