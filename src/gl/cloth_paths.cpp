@@ -40,8 +40,8 @@ bool cloth_paths::load(cloth_backend target, std::string& error) {
     return cpu_cloth_paths::load(target, error);
   // Question 4's bound, from the cloth as loaded: a particle faster than it has diverged.
   speed_bound_ = divergence_speed_bound(cloth);
-  const bool loaded = target == cloth_backend::gpu ? gpu_.load(cloth, error)
-                                                   : gpu_compute_.load(cloth, error);
+  const bool loaded =
+      target == cloth_backend::gpu ? gpu_.load(cloth, error) : gpu_compute_.load(cloth, error);
   backend_ = loaded ? target : cloth_backend::cpu;
   return loaded;
 }

@@ -101,13 +101,13 @@ class gpu_cloth {
   std::array<float, 3> rest_length_{};  // L0 of the structural, shear, bending springs: h, h√2, 2h
   shader_program step_program_;
   shader_program normal_program_;
-  shader_program tear_program_;              // pass 3, tearing
-  shader_program check_program_;             // the divergence check (run)
-  step_uniforms step_uniforms_;              // step_program_'s
-  tear_uniform tear_uniform_;                // tear_program_'s tear_length
-  float sent_speed_bound_ = -1.0f;           // the check pass's
-  std::vector<GLuint> queries_;              // one occlusion query per step of a checked batch
-  GLuint empty_vertex_array_ = 0;            // the full-screen triangle needs no vertex data
+  shader_program tear_program_;     // pass 3, tearing
+  shader_program check_program_;    // the divergence check (run)
+  step_uniforms step_uniforms_;     // step_program_'s
+  tear_uniform tear_uniform_;       // tear_program_'s tear_length
+  float sent_speed_bound_ = -1.0f;  // the check pass's
+  std::vector<GLuint> queries_;     // one occlusion query per step of a checked batch
+  GLuint empty_vertex_array_ = 0;   // the full-screen triangle needs no vertex data
   // The web build's: how many queries_ an earlier batch issued that are not read yet (run).
   int pending_checks_ = 0;
 

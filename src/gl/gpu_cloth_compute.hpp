@@ -63,10 +63,10 @@ class gpu_cloth_compute {
   shader_program step_program_;
   shader_program normal_program_;
   shader_program tear_program_;
-  step_uniforms step_uniforms_;              // step_program_'s
-  tear_uniform tear_uniform_;                // tear_program_'s tear_length
-  float sent_speed_bound_ = -1.0f;           // step_program_'s
-  int read_ = 0;  // copy of positions/velocities holding the current state
+  step_uniforms step_uniforms_;     // step_program_'s
+  tear_uniform tear_uniform_;       // tear_program_'s tear_length
+  float sent_speed_bound_ = -1.0f;  // step_program_'s
+  int read_ = 0;                    // copy of positions/velocities holding the current state
   std::array<GLuint, 2> position_{};
   std::array<GLuint, 2> velocity_{};
   GLuint normal_ = 0;

@@ -10,9 +10,9 @@
 #include <utility>
 
 #include "core/stability.hpp"
-#include "gl/gl.hpp"
-#include "window/framing.hpp"         // chain_view
 #include "core/wall_clock.hpp"
+#include "gl/gl.hpp"
+#include "window/framing.hpp"  // chain_view
 
 namespace clothlab {
 
