@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The browser build (docs/web.md): installs Debian's emscripten (only if missing), fetches Dear
-# ImGui's sources from Debian's source package of the same version as libimgui-dev (into
+# The browser build (docs/web.md): installs emscripten (only if missing), fetches Dear
+# ImGui's sources from the source package of the same version as libimgui-dev (into
 # build-web/deps/, once), and builds the page into build-web/site/. Used by ./run.sh --web and
 # ./test.sh; safe to run again.
 #   scripts/setup-web.sh [--with-browser]   --with-browser: also chromium and chromedriver, for
@@ -26,34 +26,28 @@ fi
 "$root/scripts/install-packages.sh" "${packages[@]}"
 
 # Dear ImGui's sources. The package libimgui-dev (scripts/setup.sh) ships a library for this
-# machine, not its sources; Debian's source package of the same version has them. It is fetched
-# with apt-get source from the Debian mirror this machine already uses, with a sources list of
-# our own (this machine's apt configuration is not changed), and checked by apt against the
-# mirror's signed index.
+# machine, not its sources; the distribution's source package of the same version has them. It is
+# fetched with apt-get source from the mirror this machine already uses (Debian's or Ubuntu's),
+# with a sources list of our own (this machine's apt configuration is not changed), and checked
+# by apt against the mirror's signed index.
 imgui_version=$(dpkg-query -W -f='${source:Version}' libimgui-dev)
 upstream=${imgui_version%-*}    # 1.86+ds-1 -> 1.86+ds
 imgui_dir=$web/deps/imgui-${upstream%+*}
 if [ ! -f "$imgui_dir/imgui.cpp" ]; then
-  codename=$(. /etc/os-release && echo "$VERSION_CODENAME")
-  # The mirror of this machine's own Debian release, main component (apt's index targets name
-  # it, whatever the format of the machine's sources lists). Debian unstable's os-release names
-  # the next release (its sources say sid): then the first main component listed.
-  read -r mirror suite < <(apt-get indextargets --format '$(REPO_URI) $(RELEASE) $(COMPONENT)' \
-      'Identifier: Packages' | awk -v c="$codename" '$3 == "main" && $2 == c {print $1, $2; found = 1; exit}
-        $3 == "main" && first == "" {first = $1 " " $2}
-        END {if (!found && first != "") print first}') || true
-  if [ -z "${mirror:-}" ]; then
-    echo "clothlab: no Debian mirror for $codename main in this machine's apt sources:" \
-         "cannot fetch Dear ImGui's sources (apt-get source imgui)" >&2
-    exit 1
-  fi
+  # The mirror of this machine's own release, with the components its sources list there
+  # (Dear ImGui's source package is in Debian's main, Ubuntu's universe): scripts/imgui-source-list.
   fetch=$web/deps/apt
   rm -rf "$fetch"
   mkdir -p "$fetch/lists/partial"
-  echo "deb-src $mirror $suite main" >"$fetch/sources.list"
+  if ! "$root/scripts/imgui-source-list" >"$fetch/sources.list"; then
+    echo "clothlab: no mirror of this machine's release in its apt sources:" \
+         "cannot fetch Dear ImGui's sources (apt-get source imgui)" >&2
+    exit 1
+  fi
+  mirror=$(awk '{print $2}' "$fetch/sources.list")
   apt_options=(-o "Dir::Etc::SourceList=$fetch/sources.list" -o Dir::Etc::SourceParts=/dev/null
                -o "Dir::State::Lists=$fetch/lists" -o APT::Sandbox::User=root)
-  echo "clothlab: fetching Dear ImGui's sources (Debian source package imgui $imgui_version" \
+  echo "clothlab: fetching Dear ImGui's sources (source package imgui $imgui_version" \
        "from $mirror)"
   apt-get "${apt_options[@]}" update -q >/dev/null
   (cd "$fetch" && apt-get "${apt_options[@]}" source --download-only -q "imgui=$imgui_version")

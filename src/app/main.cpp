@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "app/command_line.hpp"
 #include "app/headless.hpp"
-#include "app/options.hpp"
 #include "app/run_control.hpp"
 #include "gl/gl_context.hpp"
 #include "gl/program_choice.hpp"

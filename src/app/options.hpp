@@ -1,10 +1,9 @@
-// The command line of shared/cli.md, parsed with CLI11. Shared by the headless program and the
-// window, so that every option means the same in both.
+// What the command line of docs/cli.md sets (parsed by command_line.hpp): the run, its outputs,
+// and the parameters of the three stages. Shared by the headless program and the window, so
+// that every option means the same in both.
 #pragma once
 
-#include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "core/cloth_backend.hpp"  // --backend
@@ -46,19 +45,5 @@ struct options {
   coupled_springs_parameters coupled;
   cloth_parameters cloth;
 };
-
-struct parse_result {
-  std::optional<options> parsed;  // set when the program should go on
-  int exit_code = 0;              // when not: 0 after --help/--version, 2 after bad usage
-};
-
-// Parses argv. --help and --version print to stdout; bad usage prints one line to stderr
-// naming the option and what is wrong. Options that every stage shares (--dt, --mu, --mass,
-// --gravity, --integrator) are set in all three parameter structs.
-parse_result parse_command_line(int argc, const char* const* argv);
-
-// The text with its control characters escaped (a newline as \n, others as \xHH), so that a
-// message that quotes a value stays one line.
-std::string one_line(std::string_view text);
 
 }  // namespace clothlab

@@ -3,7 +3,7 @@
 #include <csignal>
 #include <cstdarg>
 
-#include "app/options.hpp"  // one_line
+#include "app/command_line.hpp"  // one_line
 
 namespace clothlab {
 

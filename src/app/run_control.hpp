@@ -20,7 +20,7 @@ inline constexpr int exit_diverged = 3;
 // SIGINT, SIGTERM, SIGHUP: the handler only records the first signal; the
 // step loop sees it after the step in progress, writes nothing more, closes the files (whole
 // lines, renamed into place) and exits with 128 + the signal's number (130, 143, 129). A step
-// that does not end within stop_grace of the signal is abandoned (stop_watchdog, headless.cpp). A
+// that does not end within stop_grace of the signal is abandoned (stop_watchdog.hpp). A
 // second signal changes nothing: timeout(1) sends two, and the first already ends the run.
 // (A lock-free atomic: written by the handler, read by the step loop and the watchdog's thread.)
 extern std::atomic<int> stop_signal;

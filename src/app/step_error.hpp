@@ -9,7 +9,7 @@
 #include <string>
 #include <utility>
 
-#include "app/options.hpp"  // one_line
+#include "app/command_line.hpp"  // one_line
 
 namespace clothlab {
 

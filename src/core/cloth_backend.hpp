@@ -1,5 +1,5 @@
 // The cloth's simulation paths (questions 11 to 13), one name for the whole program: the command
-// line's --backend, the window's switch, the headless runner and cloth_paths (src/gl) all use it.
+// line's --backend, the window's switch, the headless runner and the cloth's paths all use it.
 #pragma once
 
 namespace clothlab {

@@ -1,11 +1,10 @@
 #include "core/cloth_parallel.hpp"
 
-// The student copy has none of this file but its last lines: this path computes questions 6, 8,
-// 9 and 13 itself, so a student could answer them by calling it.
-// BEGIN TEACHER
-// About 600 lines, one job: the parallel step. Its row kernels (springs, update, normals) and the
-// step that schedules them share the row layout, the padding and the step's constants, which
-// would otherwise have to be published in a header for no other reader.
+// The teacher's alone (grading/lab.json): this path computes questions 6, 8, 9 and 13 itself, so
+// a student could answer them by calling it; the student copy compiles cloth_parallel_absent.cpp
+// in its place. About 600 lines, one job: the parallel step. Its row kernels (springs, update,
+// normals) and the step that schedules them share the row layout, the padding and the step's
+// constants, which would otherwise have to be published in a header for no other reader.
 #include <omp.h>
 
 #include <algorithm>
@@ -414,14 +413,12 @@ void cloth_parallel::read_state(spring_mesh& cloth) const {
   });
 }
 
-void cloth_parallel::step(const cloth_parameters& given) {
-  if (std::string error; !supports(given, error))
+void cloth_parallel::step(const cloth_parameters& p) {
+  if (std::string error; !supports(p, error))
     throw std::invalid_argument("cloth_parallel::step: " + error);
+  check_effective(p, "cloth_parallel::step");
   if (n_ == 0)
     throw std::logic_error("cloth_parallel::step called before load");
-  cloth_parameters resolved = given;
-  resolved.grid_size = n_;
-  const cloth_parameters p = effective_cloth_parameters(resolved);
   const int n = n_;
 
   step_constants c{};
@@ -616,6 +613,3 @@ bool cloth_parallel::diverged(double speed_bound) const {
 }
 
 }  // namespace clothlab
-// END TEACHER
-// COPY| // The parallel path is in the teacher's copy: its stand-in, which says so.
-// COPY| #include "core/cloth_parallel_absent.cpp"

@@ -51,8 +51,9 @@ class cloth_parallel {
   // already torn, N), so that a run can switch paths at any step. Allocates every array the
   // steps use.
   void load(const spring_mesh& cloth);
-  // One step of length p.dynamics.time_step (the resolution scaling of question 10 applied to
-  // the loaded N). Throws std::invalid_argument when !supports(p).
+  // One step of length p.dynamics.time_step, with p the parameters at the loaded N
+  // (spring_mesh::effective_parameters, question 10). Throws std::invalid_argument when
+  // !supports(p) or p is not resolved (check_effective).
   void step(const cloth_parameters& p);
   // `count` steps; with speed_bound > 0 (m/s) each step is checked: returns the first step of
   // the batch (1..count) after which a particle is not finite or faster than the bound (the run

@@ -1,8 +1,8 @@
 // The stand-in for the parallel CPU path (cloth_parallel.hpp) where it is not built: it says
-// why, and every function that would run it throws. Compiled in place of cloth_parallel.cpp by
-// the browser build (WebAssembly has no OpenMP here: src/core/CMakeLists.txt) and by a build
-// without OpenMP (Apple's clang: CLOTHLAB_NO_OPENMP), and included by
-// the student copy's cloth_parallel.cpp (the path would answer questions 6, 8, 9 and 13).
+// why, and every function that would run it throws. Compiled in place of cloth_parallel.cpp
+// (src/core/CMakeLists.txt) by the browser build (WebAssembly has no OpenMP here), by a build
+// without OpenMP (Apple's clang: CLOTHLAB_NO_OPENMP), and by the student copy, which has no
+// cloth_parallel.cpp (the path would answer questions 6, 8, 9 and 13).
 #include <stdexcept>
 
 #include "core/cloth_parallel.hpp"

@@ -10,6 +10,7 @@
 #include "core/parameters.hpp"
 #include "core/particle_system.hpp"
 #include "core/spring.hpp"
+#include "core/step_phases.hpp"
 
 namespace clothlab {
 
@@ -28,11 +29,13 @@ class coupled_springs {
   void compute_force(std::span<const double> position, std::span<double> force) const;
   void apply_force();          // numerical integration of one step (model.md)
   void apply_constraints() {}  // none: the fixed p0 is apply_force's (it never moves it)
-  // One step, as the lab names its parts: forces, integration, constraints.
-  void step() {
-    compute_force();
-    apply_force();
-    apply_constraints();
+  // One step, the handout's phases in their order (question 3): forces, integration,
+  // constraints; `phase` wraps each (the window times them).
+  template <class Wrap = run_phase>
+  void step(Wrap&& phase = {}) {
+    phase(step_phase::forces, [this] { compute_force(); });
+    phase(step_phase::integration, [this] { apply_force(); });
+    phase(step_phase::constraints, [this] { apply_constraints(); });
   }
 
   const particle_system& particles() const { return particles_; }

@@ -10,7 +10,7 @@
 #include <array>
 #include <cstddef>
 
-#include "core/spring_mesh.hpp"  // spring_family
+#include "core/spring_family.hpp"
 
 namespace clothlab {
 

@@ -1,6 +1,6 @@
 // The lab's parameters, one row each: the option that sets it, its unit, the field of the stage
 // structs it sets (parameters.hpp holds the defaults), the range the command line accepts, the
-// range of the window's slider and the help. The command line (app/options.cpp), the window's
+// range of the window's slider and the help. The command line (app/command_line.cpp), the window's
 // sliders (window/stage_editors.cpp) and docs/cli.md (tests/docs/parameter_table_test.cpp) read
 // it, so that each of these facts is written once: a new parameter is one more row here.
 #pragma once

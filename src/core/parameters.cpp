@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace clothlab {
 
@@ -102,6 +104,13 @@ cloth_parameters effective_cloth_parameters(const cloth_parameters& parameters) 
   effective.dynamics.mass = total_mass / (n * n);                      // m_N = M / N^2
   effective.bending_stiffness = effective_bending_stiffness(parameters, parameters.grid_size);
   return effective;
+}
+
+void check_effective(const cloth_parameters& parameters, const char* who) {
+  if (parameters.scaling != resolution_scaling::per_particle)
+    throw std::invalid_argument(std::string(who) +
+                                ": takes the parameters at the loaded N "
+                                "(effective_cloth_parameters), not resolution-independent ones");
 }
 
 double effective_bending_stiffness(const cloth_parameters& parameters, int grid_size) {

@@ -139,6 +139,10 @@ struct cloth_parameters {
 //   bending               K_bend,N   = K_bend (h_ref / h)^4      (bending energy ~ K_bend h^4)
 // Derivation in parameters.cpp. The result has scaling = per_particle (it is resolved).
 cloth_parameters effective_cloth_parameters(const cloth_parameters& parameters);
+// The fast paths (cloth_parallel, gpu_cloth, gpu_cloth_compute) take the parameters at their N,
+// effective_cloth_parameters' result, from whoever chose the path: throws std::invalid_argument
+// naming `who` for parameters still to be resolved (resolution_independent).
+void check_effective(const cloth_parameters& parameters, const char* who);
 // The bending stiffness of that result for an N x N grid (N = grid_size), alone: what a step
 // asks for many times, without a copy of the parameters.
 double effective_bending_stiffness(const cloth_parameters& parameters, int grid_size);

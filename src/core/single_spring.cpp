@@ -67,4 +67,11 @@ void single_spring::apply_force() {
   particles_.set_velocity(1, v1);
 }
 
+void keep_velocity_along_spring(single_spring& stage) {
+  particle_system& particles = stage.particles();
+  const glm::dvec3 axis = particles.get_position(1) - particles.get_position(0);
+  const glm::dvec3 v = particles.get_velocity(1);
+  particles.set_velocity(1, glm::dot(v, axis) / glm::dot(axis, axis) * axis);
+}
+
 }  // namespace clothlab

@@ -9,6 +9,7 @@
 #include "core/parameters.hpp"
 #include "core/particle_system.hpp"
 #include "core/spring.hpp"
+#include "core/step_phases.hpp"
 
 namespace clothlab {
 
@@ -26,11 +27,13 @@ class single_spring {
   void compute_force(std::span<const double> position, std::span<double> force) const;
   void apply_force();          // numerical integration of one step (model.md)
   void apply_constraints() {}  // none: the fixed p0 is apply_force's (it never moves it)
-  // One step, as the lab names its parts: forces, integration, constraints.
-  void step() {
-    compute_force();
-    apply_force();
-    apply_constraints();
+  // One step, the handout's phases in their order (question 3): forces, integration,
+  // constraints; `phase` wraps each (the window times them).
+  template <class Wrap = run_phase>
+  void step(Wrap&& phase = {}) {
+    phase(step_phase::forces, [this] { compute_force(); });
+    phase(step_phase::integration, [this] { apply_force(); });
+    phase(step_phase::constraints, [this] { apply_constraints(); });
   }
 
   const particle_system& particles() const { return particles_; }
@@ -42,5 +45,10 @@ class single_spring {
   time_integrator integrator_;  // the scheme's scratch arrays, kept between steps
   std::array<spring, 1> springs_{};
 };
+
+// Question 2's 1D start (--start 1d, the window's "1D start" box): of v1, only its component
+// along the spring (p1 - p0) is kept, so that the mass moves on the spring's line, the motion of
+// the 1D model. Applied after load_model.
+void keep_velocity_along_spring(single_spring& stage);
 
 }  // namespace clothlab

@@ -1,6 +1,7 @@
 // The handout's spring_mesh (section 4): what a student reads and writes for questions 6 to 9
-// and 13. What the rest of clothlab needs from the cloth (the mouse drag, the stability lab's
-// schemes, normals, tearing) is in spring_mesh_extras.cpp and tearing.cpp.
+// and 13. What the rest of clothlab needs from the cloth is beside it: spring_mesh_step.cpp (the
+// mouse drag, the stability lab's schemes, the constraints), spring_mesh_geometry.cpp (the
+// springs' list, the normals) and tearing.cpp.
 #include "core/spring_mesh.hpp"
 
 #include <algorithm>

@@ -15,13 +15,10 @@
 #include "core/parameters.hpp"
 #include "core/particle_system.hpp"
 #include "core/spring.hpp"
+#include "core/spring_family.hpp"
+#include "core/step_phases.hpp"
 
 namespace clothlab {
-
-// The three kinds of springs of the handout's figure 6, each with its own stiffness.
-enum class spring_family { structural, shear, bending };
-inline constexpr std::array<spring_family, 3> all_spring_families = {
-    spring_family::structural, spring_family::shear, spring_family::bending};
 
 class spring_mesh {
  public:
@@ -52,18 +49,25 @@ class spring_mesh {
   // has torn (tearing is an addition of clothlab, off by default).
   bool spring_intact(int ku, int kv, int du, int dv) const;
 
-  // One step, as the lab names its parts (question 3): the forces (compute_force, then the
-  // mouse drag), the integration (apply_force, or a scheme of the stability lab), then the
-  // constraints (the ground of question 9, and the additions).
-  void step() {
-    compute_force();
-    add_drag_force();
-    integrate_step();
-    apply_constraints();
+  // One step, the handout's phases in their order (question 3): the forces (compute_force, then
+  // the mouse drag), the integration (apply_force, or a scheme of the stability lab), the
+  // constraints (the ground of question 9, and the additions). Every caller steps the cloth
+  // with it: the window (which wraps each phase in a timer: `phase`), the headless run, the
+  // benchmarks. The normals, the last phase of a drawn frame, are the drawing's: computed once
+  // after the frame's steps from the final positions (and by compute_force itself, at the
+  // start of every step, when the wind needs them).
+  template <class Wrap = run_phase>
+  void step(Wrap&& phase = {}) {
+    phase(step_phase::forces, [this] {
+      compute_force();
+      add_drag_force();
+    });
+    phase(step_phase::integration, [this] { integrate_step(); });
+    phase(step_phase::constraints, [this] { apply_constraints(); });
   }
 
-  // ---- Beyond the handout (spring_mesh_extras.cpp, tearing.cpp): what the rest of clothlab
-  // needs from the cloth. None of it is a question of the lab.
+  // ---- Beyond the handout (spring_mesh_step.cpp, spring_mesh_geometry.cpp, tearing.cpp): what
+  // the rest of clothlab needs from the cloth. None of it is a question of the lab.
 
   // The mouse drag (docs/model.md): F_d = K_d (q - p) on the dragged vertex, added to forces.
   void add_drag_force();

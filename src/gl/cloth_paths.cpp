@@ -5,17 +5,11 @@
 #include <utility>
 
 #include "core/stability.hpp"
+#include "core/wall_clock.hpp"
 #include "gl/gl_state_guard.hpp"
 #include "gl/shader.hpp"  // shader_path
 
 namespace clothlab {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 cloth_paths::~cloth_paths() {
   if (compute_texture_size_ != 0) {
@@ -42,27 +36,12 @@ bool cloth_paths::gpu_can_run(cloth_backend target, std::string& why) const {
 }
 
 bool cloth_paths::load(cloth_backend target, std::string& error) {
+  if (!on_gpu(target))
+    return cpu_cloth_paths::load(target, error);
   // Question 4's bound, from the cloth as loaded: a particle faster than it has diverged.
   speed_bound_ = divergence_speed_bound(cloth);
-  bool loaded = true;
-  switch (target) {
-    case cloth_backend::cpu:
-      break;
-    case cloth_backend::cpu_parallel:
-      try {
-        parallel_.load(cloth);
-      } catch (const std::invalid_argument& e) {  // not built: cloth_parallel_absent.cpp
-        error = e.what();
-        loaded = false;
-      }
-      break;
-    case cloth_backend::gpu:
-      loaded = gpu_.load(cloth, error);
-      break;
-    case cloth_backend::gpu_compute:
-      loaded = gpu_compute_.load(cloth, error);
-      break;
-  }
+  const bool loaded =
+      target == cloth_backend::gpu ? gpu_.load(cloth, error) : gpu_compute_.load(cloth, error);
   backend_ = loaded ? target : cloth_backend::cpu;
   return loaded;
 }
@@ -70,9 +49,8 @@ bool cloth_paths::load(cloth_backend target, std::string& error) {
 void cloth_paths::read_state() {
   switch (backend_) {
     case cloth_backend::cpu:
-      return;
     case cloth_backend::cpu_parallel:
-      parallel_.read_state(cloth);
+      cpu_cloth_paths::read_state();
       return;
     case cloth_backend::gpu:
       gpu_.read_state(cloth);
@@ -87,16 +65,15 @@ void cloth_paths::read_state() {
 
 int cloth_paths::run(int count) {
   switch (backend_) {
-    case cloth_backend::cpu_parallel:
-      return parallel_.run(cloth.parameters, count, speed_bound_);
     case cloth_backend::gpu:
-      return gpu_.run(cloth.parameters, count, speed_bound_);
+      return gpu_.run(cloth.effective_parameters(), count, speed_bound_);
     case cloth_backend::gpu_compute:
-      return gpu_compute_.run(cloth.parameters, count, speed_bound_);
+      return gpu_compute_.run(cloth.effective_parameters(), count, speed_bound_);
     case cloth_backend::cpu:
+    case cloth_backend::cpu_parallel:
       break;
   }
-  throw std::logic_error("cloth_paths::run: the CPU path is stepped by spring_mesh::step");
+  return cpu_cloth_paths::run(count);
 }
 
 void cloth_paths::finish() const {
@@ -110,13 +87,11 @@ glm::dvec3 cloth_paths::position(std::size_t k) {
       return gpu_.read_particle(k).position;
     case cloth_backend::gpu_compute:
       return gpu_compute_.read_particle(k).position;
-    case cloth_backend::cpu_parallel:
-      read_state();
-      break;
     case cloth_backend::cpu:
+    case cloth_backend::cpu_parallel:
       break;
   }
-  return cloth.particles().get_position(k);
+  return cpu_cloth_paths::position(k);
 }
 
 cloth_textures cloth_paths::textures() {
@@ -209,17 +184,18 @@ backend_comparison cloth_paths::measure(int steps) {
     cpu_copy.step();
   comparison.cpu_steps_per_second = steps / seconds_since(start);
 
+  const cloth_parameters at_this_n = cloth.effective_parameters();  // question 10
   gpu_cloth gpu_copy;
   if (gpu_can_run(cloth_backend::gpu, comparison.gpu_error) &&
       gpu_copy.load(cloth, comparison.gpu_error))
-    comparison.gpu_steps_per_second = 1.0 / gpu_copy.time_steps(cloth.parameters, steps);
+    comparison.gpu_steps_per_second = 1.0 / gpu_copy.time_steps(at_this_n, steps);
 
   gpu_cloth_compute compute_copy;
   if (gpu_can_run(cloth_backend::gpu_compute, comparison.compute_error) &&
       compute_copy.load(cloth, comparison.compute_error)) {
     glFinish();
     const auto compute_start = std::chrono::steady_clock::now();
-    compute_copy.run(cloth.parameters, steps);
+    compute_copy.run(at_this_n, steps);
     glFinish();
     comparison.compute_steps_per_second = steps / seconds_since(compute_start);
   }

@@ -56,7 +56,10 @@ class saved_gl_state {
   GLint vertex_array_ = 0;
   GLint active_texture_ = GL_TEXTURE0;
   std::array<GLint, texture_units> texture_{};
-  [[maybe_unused]] saved_polygon_mode polygon_mode_;  // saved and restored by itself
+  // The polygon mode, saved and restored by itself (WebGL2 has none).
+#if !defined(CLOTHLAB_GL_WEB)
+  saved_polygon_mode polygon_mode_;
+#endif
   GLint pixel_pack_buffer_ = 0;
   GLint pixel_unpack_buffer_ = 0;
   std::array<GLboolean, capabilities.size()> enabled_{};

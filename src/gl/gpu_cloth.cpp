@@ -169,7 +169,7 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
     tear_program_.use();
     glUniform1i(tear_program_.uniform("position_texture"), 0);
     glUniform1i(tear_program_.uniform("spring_mask_texture"), 3);
-    sent_tear_length_ = {};
+    tear_uniform_.forget();
   }
   if (check_program_.id() == 0) {
     if (!check_program_.load("gpu_full_screen.vert", "gpu_check.frag", error))
@@ -254,14 +254,10 @@ void gpu_cloth::step(const cloth_parameters& p) {
   run(p, 1);
 }
 
-int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound) {
-  // The mass and stiffnesses the simulation really uses (question 10's resolution mode), for
-  // the grid that is loaded.
-  cloth_parameters resolved = given;
-  resolved.grid_size = grid_size_;
-  const cloth_parameters p = effective_cloth_parameters(resolved);
+int gpu_cloth::run(const cloth_parameters& p, int count, double speed_bound) {
   if (!is_loaded())
     throw std::logic_error("gpu_cloth::step called before a successful load");
+  check_effective(p, "gpu_cloth::step");
   if (std::string error; !supports(p, error))
     throw std::invalid_argument("gpu_cloth::step: " + error);
   if (count < 1)
@@ -280,14 +276,8 @@ int gpu_cloth::run(const cloth_parameters& given, int count, double speed_bound)
   step_uniforms_.set(p, grid_size_, rest_length_);
   const bool wind = p.wind_strength != 0.0;  // the only force that needs the normals
   const bool tear = p.tear_strain > 0.0;
-  if (tear) {
-    const std::array<float, 3> tear_length = tear_lengths(p.tear_strain, rest_length_);
-    if (tear_length != sent_tear_length_) {
-      tear_program_.use();
-      glUniform3fv(tear_program_.uniform("tear_length"), 1, tear_length.data());
-      sent_tear_length_ = tear_length;
-    }
-  }
+  if (tear)
+    tear_uniform_.set(tear_program_, p.tear_strain, rest_length_);
   bool check = speed_bound > 0.0;
 #if defined(CLOTHLAB_GL_WEB)
   // WebGL2 gives a query's result only once the browser's current task (this frame) has ended,

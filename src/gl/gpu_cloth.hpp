@@ -59,9 +59,11 @@ class gpu_cloth {
   bool is_loaded() const { return grid_size_ != 0; }
 
   // One step of model.md with p's dynamics (dt, mu, m, g0, integrator), stiffnesses, wind and
-  // ground. p's grid_size, side_length and pins are not read: they change the cloth only through
-  // spring_mesh::load_model and a new load(). Throws std::logic_error before a successful load,
-  // std::invalid_argument for an integrator that supports_integrator refuses.
+  // ground, p being the parameters at the loaded N (spring_mesh::effective_parameters, question
+  // 10: the caller resolves them). p's grid_size, side_length and pins are not read: they change
+  // the cloth only through spring_mesh::load_model and a new load(). Throws std::logic_error
+  // before a successful load, std::invalid_argument for an integrator that supports_integrator
+  // refuses or for parameters not resolved (check_effective).
   void step(const cloth_parameters& p);
   // `count` steps as one batch: the caller's GL state saved and the uniforms set once. With
   // speed_bound > 0 (m/s) every step is also checked on the GPU, without reading the state
@@ -102,13 +104,13 @@ class gpu_cloth {
   std::array<float, 3> rest_length_{};  // L0 of the structural, shear, bending springs: h, h√2, 2h
   shader_program step_program_;
   shader_program normal_program_;
-  shader_program tear_program_;              // pass 3, tearing
-  shader_program check_program_;             // the divergence check (run)
-  step_uniforms step_uniforms_;              // step_program_'s
-  std::array<float, 3> sent_tear_length_{};  // the tear pass's last uniform value
-  float sent_speed_bound_ = -1.0f;           // the check pass's
-  std::vector<GLuint> queries_;              // one occlusion query per step of a checked batch
-  GLuint empty_vertex_array_ = 0;            // the full-screen triangle needs no vertex data
+  shader_program tear_program_;     // pass 3, tearing
+  shader_program check_program_;    // the divergence check (run)
+  step_uniforms step_uniforms_;     // step_program_'s
+  tear_uniform tear_uniform_;       // tear_program_'s tear_length
+  float sent_speed_bound_ = -1.0f;  // the check pass's
+  std::vector<GLuint> queries_;     // one occlusion query per step of a checked batch
+  GLuint empty_vertex_array_ = 0;   // the full-screen triangle needs no vertex data
   // The web build's: how many queries_ an earlier batch issued that are not read yet (run).
   int pending_checks_ = 0;
 

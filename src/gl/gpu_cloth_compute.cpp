@@ -105,7 +105,7 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
   if (tear_program_.id() == 0) {
     if (!tear_program_.load_compute("gpu_compute_tear.comp", error))
       return false;
-    sent_tear_length_ = {};
+    tear_uniform_.forget();
   }
   rest_length_ = family_rest_lengths(cloth);
   const particle_system& particles = cloth.particles();
@@ -154,12 +154,10 @@ GLuint gpu_cloth_compute::normal_buffer() {
   return normal_;
 }
 
-int gpu_cloth_compute::run(const cloth_parameters& given, int count, double speed_bound) {
+int gpu_cloth_compute::run(const cloth_parameters& p, int count, double speed_bound) {
   if (!is_loaded())
     throw std::logic_error("gpu_cloth_compute::run called before a successful load");
-  cloth_parameters resolved = given;
-  resolved.grid_size = grid_size_;
-  const cloth_parameters p = effective_cloth_parameters(resolved);
+  check_effective(p, "gpu_cloth_compute::run");
   if (std::string error; !gpu_cloth::supports(p, error))
     throw std::invalid_argument("gpu_cloth_compute::run: " + error);
   if (count < 1)
@@ -192,14 +190,8 @@ int gpu_cloth_compute::run(const cloth_parameters& given, int count, double spee
   }
   const bool wind = p.wind_strength != 0.0;  // the only force that needs the normals
   const bool tear = p.tear_strain > 0.0;
-  if (tear) {
-    const std::array<float, 3> tear_length = tear_lengths(p.tear_strain, rest_length_);
-    if (tear_length != sent_tear_length_) {
-      tear_program_.use();
-      glUniform3fv(tear_program_.uniform("tear_length"), 1, tear_length.data());
-      sent_tear_length_ = tear_length;
-    }
-  }
+  if (tear)
+    tear_uniform_.set(tear_program_, p.tear_strain, rest_length_);
   // Bound once per batch: the normals and the spring mask (updated in place).
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, spring_mask_);

@@ -38,10 +38,10 @@ class gpu_cloth_compute {
   // when the context is older than 4.3 or a shader is missing or does not compile.
   bool load(const spring_mesh& cloth, std::string& error);
   bool is_loaded() const { return grid_size_ != 0; }
-  // `count` steps (uniforms set once). With speed_bound > 0 (m/s) every step is checked on the
-  // GPU (a counter per step of the particles not finite or faster than the bound): returns the
-  // first step of the batch (1..count) after which one was, 0 when none. Throws like
-  // gpu_cloth::step.
+  // `count` steps, p as gpu_cloth::step's (the parameters at the loaded N; uniforms set once).
+  // With speed_bound > 0 (m/s) every step is checked on the GPU (a counter per step of the
+  // particles not finite or faster than the bound): returns the first step of the batch
+  // (1..count) after which one was, 0 when none. Throws like gpu_cloth::step.
   int run(const cloth_parameters& p, int count = 1, double speed_bound = 0.0);
   // Copies the positions and velocities (widened to doubles) into cloth.particles() and
   // removes from cloth the springs torn on the GPU.
@@ -68,10 +68,10 @@ class gpu_cloth_compute {
   shader_program step_program_;
   shader_program normal_program_;
   shader_program tear_program_;
-  step_uniforms step_uniforms_;              // step_program_'s
-  std::array<float, 3> sent_tear_length_{};  // tear_program_'s last uniform value
-  float sent_speed_bound_ = -1.0f;           // step_program_'s
-  int read_ = 0;  // copy of positions/velocities holding the current state
+  step_uniforms step_uniforms_;     // step_program_'s
+  tear_uniform tear_uniform_;       // tear_program_'s tear_length
+  float sent_speed_bound_ = -1.0f;  // step_program_'s
+  int read_ = 0;                    // copy of positions/velocities holding the current state
   std::array<GLuint, 2> position_{};
   std::array<GLuint, 2> velocity_{};
   GLuint normal_ = 0;

@@ -96,6 +96,16 @@ void step_uniforms::locate(const shader_program& program) {
   sent_once_ = false;
 }
 
+void tear_uniform::set(const shader_program& tear_program, double strain,
+                       const std::array<float, 3>& rest_length) {
+  const std::array<float, 3> tear_length = tear_lengths(strain, rest_length);
+  if (tear_length == sent_)
+    return;
+  tear_program.use();
+  glUniform3fv(tear_program.uniform("tear_length"), 1, tear_length.data());
+  sent_ = tear_length;
+}
+
 void step_uniforms::set(const cloth_parameters& p, int grid_size,
                         const std::array<float, 3>& rest_length) {
   const auto f = [](double x) { return static_cast<float>(x); };

@@ -32,6 +32,19 @@ void remove_torn_springs(std::span<const std::uint32_t> masks, spring_mesh& clot
 std::array<float, 3> family_rest_lengths(const spring_mesh& cloth);
 std::array<float, 3> tear_lengths(double strain, const std::array<float, 3>& rest_length);
 
+// The tear pass's uniform tear_length ((1 + strain) L0 of each family, tear_lengths), sent to
+// its program only when it changes.
+class tear_uniform {
+ public:
+  void forget() { sent_ = {}; }  // after the program is linked again
+  // Sets it on tear_program (which is then in use) unless the program already holds it.
+  void set(const shader_program& tear_program, double strain,
+           const std::array<float, 3>& rest_length);
+
+ private:
+  std::array<float, 3> sent_{};
+};
+
 // The uniforms of one step of the model (shaders/gpu_step.frag, gpu_compute_step.comp): their
 // locations, looked up once, and the values last sent, so that a batch sends nothing when the
 // parameters have not changed since the last one.

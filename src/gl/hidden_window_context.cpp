@@ -7,17 +7,10 @@
 #include "gl/gl.hpp"  // GLEW, which must come before GLFW
 #include "gl/gl_context.hpp"
 
-#include <GLFW/glfw3.h>
+#include "gl/glfw_errors.hpp"  // GLFW
 
 namespace clothlab {
 namespace {
-
-std::string last_glfw_error;  // GLFW reports its errors through a callback
-
-void remember_glfw_error(int code, const char* description) {
-  last_glfw_error = description ? description : "unknown GLFW error";
-  last_glfw_error += " (GLFW error " + std::to_string(code) + ")";
-}
 
 class hidden_window_context final : public gl_context {
  public:
@@ -50,14 +43,14 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
             ": both sides must be at least 1 pixel";
     return nullptr;
   }
-  glfwSetErrorCallback(remember_glfw_error);
+  keep_glfw_errors();
   // (macOS: the working directory stays where the output files are written.)
   glfwInitHint(GLFW_COCOA_CHDIR_RESOURCES, GLFW_FALSE);
   if (glfwInit() != GLFW_TRUE) {
     error =
         "this build renders off screen in a hidden GLFW window (it has neither OSMesa nor "
         "EGL), which needs a display: " +
-        last_glfw_error + ". Under Linux, run it with `xvfb-run -a`.";
+        last_glfw_error() + ". Under Linux, run it with `xvfb-run -a`.";
     return nullptr;
   }
   // 4.3 core (compute shaders) where the driver has it, else 3.3 core (macOS: 4.1).
@@ -76,7 +69,7 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
       break;
   }
   if (window == nullptr) {
-    error = "cannot create a hidden window with an OpenGL 3.3 core context: " + last_glfw_error;
+    error = "cannot create a hidden window with an OpenGL 3.3 core context: " + last_glfw_error();
     glfwTerminate();
     return nullptr;
   }

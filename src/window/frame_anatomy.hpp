@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/parameters.hpp"  // stage_kind
+#include "core/parameters.hpp"   // stage_kind
+#include "core/step_phases.hpp"  // step_phase
 
 namespace clothlab {
 
@@ -31,6 +32,20 @@ struct frame_anatomy {
   double poll_and_panel_seconds = 0.0;  // events, then the panel's widgets (Dear ImGui)
   double panel_and_swap_seconds = 0.0;  // the panel drawn over the scene, then the swap
   double frame_seconds = 0.0;           // the whole frame, wall-clock
+
+  // The time of a phase of the step: compute_force_seconds, apply_force_seconds or
+  // constraints_seconds.
+  double& seconds_of(step_phase phase) {
+    switch (phase) {
+      case step_phase::forces:
+        return compute_force_seconds;
+      case step_phase::integration:
+        return apply_force_seconds;
+      case step_phase::constraints:
+        break;
+    }
+    return constraints_seconds;
+  }
 };
 
 // One line of the view: the phase, which function of which file does it, its time.

@@ -5,25 +5,15 @@
 
 #include "gl/gl.hpp"  // GLEW, which must come before GLFW
 
-#include <GLFW/glfw3.h>
+#include "gl/glfw_errors.hpp"  // GLFW
 
 namespace clothlab {
-namespace {
-
-std::string last_glfw_error;  // GLFW reports its errors through a callback
-
-void remember_glfw_error(int code, const char* description) {
-  last_glfw_error = description ? description : "unknown GLFW error";
-  last_glfw_error += " (GLFW error " + std::to_string(code) + ")";
-}
-
-}  // namespace
 
 std::unique_ptr<glfw_context> glfw_context::create(const std::string& title, int width, int height,
                                                    std::string& error) {
-  glfwSetErrorCallback(remember_glfw_error);
+  keep_glfw_errors();
   if (glfwInit() != GLFW_TRUE) {
-    error = "cannot open a window: " + last_glfw_error +
+    error = "cannot open a window: " + last_glfw_error() +
             ". Is a display available? Run it under `xvfb-run -a`, or use `clothlab --headless`.";
     return nullptr;
   }
@@ -42,7 +32,7 @@ std::unique_ptr<glfw_context> glfw_context::create(const std::string& title, int
 #endif
   GLFWwindow* window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (window == nullptr) {
-    error = std::string("cannot create ") + wanted + ": " + last_glfw_error;
+    error = std::string("cannot create ") + wanted + ": " + last_glfw_error();
     glfwTerminate();
     return nullptr;
   }

@@ -5,10 +5,6 @@
 
 namespace clothlab {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 void rate_meter::restart() {
   steps_in_window_ = 0;
   frames_in_window_ = 0;

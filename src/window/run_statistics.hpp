@@ -10,11 +10,9 @@
 
 #include "core/energy.hpp"
 #include "core/spring_mesh.hpp"
+#include "core/wall_clock.hpp"  // seconds_since
 
 namespace clothlab {
-
-// Wall-clock seconds since `start`.
-double seconds_since(std::chrono::steady_clock::time_point start);
 
 // Steps and frames counted over about half a second of wall-clock time.
 class rate_meter {

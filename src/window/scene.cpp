@@ -10,9 +10,9 @@
 #include <utility>
 
 #include "core/stability.hpp"
+#include "core/wall_clock.hpp"
 #include "gl/gl.hpp"
-#include "window/framing.hpp"         // chain_view
-#include "window/run_statistics.hpp"  // seconds_since
+#include "window/framing.hpp"  // chain_view
 
 namespace clothlab {
 
@@ -48,16 +48,11 @@ bool scene::init_renderer(std::string& error) {
 
 // ---- Initialisation ---------------------------------------------------------------------
 
-// Stage 1, with the 1D start of question 2 when asked: only the component of v1 along the
-// spring (p1 - p0) is kept.
+// Stage 1, with the 1D start of question 2 when asked.
 void scene::load_spring_stage() {
   spring_stage.load_model();
-  if (!spring_one_dimensional_start)
-    return;
-  particle_system& particles = spring_stage.particles();
-  const glm::dvec3 axis = particles.get_position(1) - particles.get_position(0);
-  const glm::dvec3 v = particles.get_velocity(1);
-  particles.set_velocity(1, glm::dot(v, axis) / glm::dot(axis, axis) * axis);
+  if (spring_one_dimensional_start)
+    keep_velocity_along_spring(spring_stage);
 }
 
 void scene::load_model() {
@@ -271,29 +266,18 @@ void scene::simulate(int steps, double wall_clock_budget) {
 // check (question 4): an explosion stops the run instead of drawing NaNs. The check also stops
 // a run whose speeds pass far beyond anything a stable run reaches (stability.hpp), so that
 // the explosion is caught before the numbers overflow. (The GPU paths: simulate.)
+// Each phase is timed for the frame anatomy (questions 1 and 3), around the stage's step.
 void scene::step_current_stage() {
-  // Each phase timed for the frame anatomy (questions 1 and 3), around the student's functions.
-  auto [time_step, check] = with_current_stage([this](auto& stage) {
+  const auto timed = [this](step_phase phase, auto&& run) {
     const clock::time_point start = clock::now();
-    stage.compute_force();  // forces from the positions at the start of the step
-    if constexpr (requires { stage.add_drag_force(); })
-      stage.add_drag_force();  // the cloth's mouse drag (the springs' is in compute_force)
-    const clock::time_point forces_done = clock::now();
-    // Numerical integration (pins: fixed vertices are never moved): the cloth's apply_force
-    // (question 6), or a scheme of the stability lab.
-    if constexpr (requires { stage.integrate_step(); })
-      stage.integrate_step();
-    else
-      stage.apply_force();
-    const clock::time_point integrated = clock::now();
-    stage.apply_constraints();  // the cloth's sphere, ground, self-collision, tearing
-    const clock::time_point constrained = clock::now();
+    run();
+    anatomy_.seconds_of(phase) += seconds_since(start);
+  };
+  auto [time_step, check] = with_current_stage([&](auto& stage) {
+    stage.step(timed);
+    const clock::time_point start = clock::now();
     divergence_status found = divergence_check(stage);
-    const clock::time_point checked = clock::now();
-    anatomy_.compute_force_seconds += std::chrono::duration<double>(forces_done - start).count();
-    anatomy_.apply_force_seconds += std::chrono::duration<double>(integrated - forces_done).count();
-    anatomy_.constraints_seconds += std::chrono::duration<double>(constrained - integrated).count();
-    anatomy_.check_seconds += std::chrono::duration<double>(checked - constrained).count();
+    anatomy_.check_seconds += seconds_since(start);
     return std::pair{stage.parameters.dynamics.time_step, std::move(found)};
   });
   count_step(time_step);

@@ -13,7 +13,7 @@
 
 #include <GLFW/glfw3.h>
 
-#include "app/options.hpp"
+#include "app/command_line.hpp"
 #include "gl/renderer.hpp"
 #include "window/glfw_context.hpp"
 #include "window/window_app.hpp"

@@ -2,9 +2,11 @@
 """The documents point at what exists. Usage: check_paths.py PROJECT_ROOT
 
 For README.md and docs/*.md: every relative path they name (a Markdown link, or a path written
-as code, like `src/core/spring_mesh.cpp`) exists in the project, and none points at the lab's
-shared/ folder, which is not part of the project. Paths of things a run creates (build/, out/,
-files named by the user) are not checked."""
+as code, like `src/core/spring_mesh.cpp`) exists in the project. No file of the project (the
+documents, the sources and their comments, the text the programs print, the scripts, the CMake
+files) points at the lab's shared/ folder, which is not part of the project. Paths of things a
+run creates (build/, out/, files named by the user) are not checked."""
+import os
 import re
 import sys
 from pathlib import Path
@@ -39,6 +41,25 @@ for document in documents:
         checked += 1
         if not (root / path).exists():
             problems.append(f"{name}: `{path}` does not exist")
+# Every other text file of the project: no shared/ either (this file names it to look for it).
+SHARED = re.compile(r"(^|[\s`'\"(\[])(\.\./)?shared/")
+SKIPPED = {".git", "node_modules", "__pycache__"}
+for folder, subfolders, files in os.walk(root):
+    here = Path(folder)
+    subfolders[:] = sorted(s for s in subfolders if s not in SKIPPED and not (
+        here == root and s.startswith(("build", "out"))))  # what a run creates
+    for name in sorted(files):
+        path = here / name
+        if path in documents or path == Path(__file__).resolve():
+            continue
+        try:
+            text = path.read_text()
+        except (UnicodeDecodeError, OSError):
+            continue  # not text
+        for number, line in enumerate(text.splitlines(), 1):
+            if SHARED.search(line):
+                problems.append(f"{path.relative_to(root)}:{number} points at shared/, which is "
+                                f"not part of the project: {line.strip()}")
 for p in problems:
     print("FAILED: " + p)
 print(f"{checked} paths checked in {len(documents)} documents, {len(problems)} problem(s)")

@@ -52,6 +52,26 @@ constexpr double allowed_differing_fraction = 0.005;
 
 const std::filesystem::path reference_directory = clothlab_test::render_reference_directory;
 
+// A folder that this test alone writes in, under the working directory: the tests of this file
+// run in two programs (the off-screen build's and EGL's), one process per test, side by side
+// under ctest -j, all in the same working directory. Named after what it holds, the program, the
+// process and the test: "<what>-<program>-<process>-<test>", made empty.
+std::filesystem::path own_folder(const std::string& what) {
+#if defined(CLOTHLAB_GL_EGL)
+  const std::string program = "egl";
+#elif defined(CLOTHLAB_GL_OSMESA)
+  const std::string program = "osmesa";
+#else
+  const std::string program = "window";
+#endif
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const auto folder = std::filesystem::current_path() /
+                      (what + "-" + program + "-" + std::to_string(::getpid()) + "-" + test);
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+
 bool updating_references() {
   const char* update = std::getenv("CLOTHLAB_UPDATE_REFERENCES");
   return update != nullptr && std::string(update) == "1";
@@ -132,7 +152,8 @@ class RenderTest : public ::testing::Test {
   }
 
   // Compares with reference/<name>.png (or rewrites it when updating). On a mismatch writes
-  // <name>.actual.png and <name>.diff.png under render-failures/ of the working directory.
+  // <name>.actual.png and <name>.diff.png into a folder of the working directory of this test's
+  // own, render-failures-<program>-<process>-<test> (own_folder), and names them.
   static void expect_matches_reference(const rgba_image& actual, const std::string& name) {
     const auto reference_path = reference_directory / (name + ".png");
     if (updating_references()) {
@@ -143,14 +164,11 @@ class RenderTest : public ::testing::Test {
     const rgba_image expected = image_testing::load_png(reference_path);
     ASSERT_GT(expected.width, 0) << reference_path << ": cannot read the reference image";
     const auto difference = compare_images(actual, expected, pixel_tolerance);
-    const auto failures = std::filesystem::current_path() / "render-failures";
+    if (difference.differing_fraction <= allowed_differing_fraction)
+      return;
+    const auto failures = own_folder("render-failures");
     const auto actual_path = failures / (name + ".actual.png");
     const auto diff_path = failures / (name + ".diff.png");
-    if (difference.differing_fraction <= allowed_differing_fraction) {
-      std::filesystem::remove(actual_path);  // left by an earlier failure, if any
-      std::filesystem::remove(diff_path);
-      return;
-    }
     image_testing::write_png(actual_path, actual);
     image_testing::write_png(diff_path,
                              image_testing::difference_image(actual, expected, pixel_tolerance));
@@ -385,8 +403,8 @@ TEST_F(RenderTest, SpringStagesAreNotBlank) {
 
 TEST_F(RenderTest, SavedPngHoldsTheFramebufferTopRowFirst) {
   const rgba_image rendered = render_cloth();
-  const auto path = std::filesystem::current_path() / "render-output" / "saved.png";
-  std::filesystem::create_directories(path.parent_path());
+  const auto folder = own_folder("render-output");
+  const auto path = folder / "saved.png";
   std::string error;
   ASSERT_TRUE(save_framebuffer_png(path.string(), width, height, error)) << error;
   const rgba_image saved = image_testing::load_png(path);
@@ -398,6 +416,7 @@ TEST_F(RenderTest, SavedPngHoldsTheFramebufferTopRowFirst) {
     return saved.channel(width / 2, y, 2) - saved.channel(width / 2, y, 0);
   };
   EXPECT_GT(blueness(0), blueness(height - 1) + 15);
+  std::filesystem::remove_all(folder);
 }
 
 // The web build's P key downloads the PNG from memory: the same bytes as the saved file.
@@ -406,13 +425,15 @@ TEST_F(RenderTest, PngInMemoryHasTheBytesOfTheSavedFile) {
   std::vector<unsigned char> png;
   std::string error;
   ASSERT_TRUE(framebuffer_png(width, height, png, error)) << error;
-  const auto path = std::filesystem::current_path() / "render-output" / "in-memory.png";
-  std::filesystem::create_directories(path.parent_path());
+  const auto folder = own_folder("render-output");
+  const auto path = folder / "in-memory.png";
   ASSERT_TRUE(save_framebuffer_png(path.string(), width, height, error)) << error;
   std::ifstream file(path, std::ios::binary);
   const std::vector<unsigned char> saved((std::istreambuf_iterator<char>(file)),
                                          std::istreambuf_iterator<char>());
   EXPECT_EQ(png, saved);
+  file.close();
+  std::filesystem::remove_all(folder);
   EXPECT_FALSE(framebuffer_png(0, height, png, error));
   EXPECT_NE(error.find("0x" + std::to_string(height)), std::string::npos) << error;
 }
@@ -431,11 +452,7 @@ class BrokenDataTest : public ::testing::Test {
     context_ = create_offscreen_context(width, height, error);
     ASSERT_NE(context_, nullptr) << error;
     const auto real_data = data_directory();
-    data_ = std::filesystem::current_path() /
-            ("broken-data-" +
-             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::remove_all(data_);
-    std::filesystem::create_directories(data_);
+    data_ = own_folder("broken-data");
     std::filesystem::copy(real_data / "shaders", data_ / "shaders");
     std::filesystem::copy(real_data / "assets", data_ / "assets");
     setenv("CLOTHLAB_DATA_DIR", data_.c_str(), 1);

@@ -20,13 +20,18 @@ import tempfile
 import time
 from pathlib import Path
 
-QUESTIONS = ["Q5", "Q6", "Q7", "Q8", "Q9", "Q12", "Q13"]
+ROOT = Path(sys.argv[1]).resolve() if len(sys.argv) > 1 else Path(__file__).resolve().parents[2]
+sys.dont_write_bytecode = True
+sys.path.insert(0, str(ROOT / "scripts"))
+from clothlab_lab import manifest  # noqa: E402 (the lab's facts: grading/lab.json)
+
+QUESTIONS = list(manifest.load(ROOT / manifest.MANIFEST).ids)  # "Q5", ... in the lab's order
 # The table's rows: the question labels and the labels of the tests that need every answer.
 TABLE_LABELS = r"^q[0-9]+$|-solution$"
 
 
 def main():
-    root = Path(sys.argv[1]).resolve()
+    root = ROOT
     work = Path(tempfile.mkdtemp(prefix="clothlab-finished-lab-"))
     dest = work / "clothlab-student"
     problems = []

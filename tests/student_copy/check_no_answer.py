@@ -92,14 +92,16 @@ def main():
                     check(not re.search(pattern, code),
                           f"{header.relative_to(dest)} declares {pattern!r}: a student could "
                           "call it instead of answering")
-            # The copy's cloth_parallel.cpp is its stand-in, cloth_parallel_absent.cpp, which
-            # says the path is in the teacher's copy.
-            parallel = (dest / "src/core/cloth_parallel.cpp").read_text()
+            # The copy has no cloth_parallel.cpp: its build compiles the stand-in,
+            # cloth_parallel_absent.cpp, which says the path is in the teacher's copy.
             absent = (dest / "src/core/cloth_parallel_absent.cpp").read_text()
-            check('#include "core/cloth_parallel_absent.cpp"' in parallel
-                  and "#pragma omp" not in parallel and "in the teacher's copy" in absent
+            cmake = (dest / "src/core/CMakeLists.txt").read_text()
+            check(not (dest / "src/core/cloth_parallel.cpp").exists()
+                  and "cloth_parallel.cpp" not in re.sub(r"#[^\n]*", "", cmake)
+                  and "in the teacher's copy" in absent
                   and "return false;" in absent and "#pragma omp" not in absent,
-                  "the copy's cloth_parallel.cpp is not the stub that names the teacher's copy")
+                  "the copy builds a parallel path, not the stand-in that names the teacher's "
+                  "copy")
             check(not (dest / "tests/model").exists() and
                   not (dest / "shaders/gpu_compute_step.comp").exists(),
                   "the copy has the Python reference model or the compute shader")

@@ -2,7 +2,7 @@
 // parameter table (core/parameter_table.hpp): their options, help, ranges and the stage fields
 // they set are read off it in loops; this file adds the options of a run (what to run, the
 // outputs, the sweep) and the checks that combine several options.
-#include "app/options.hpp"
+#include "app/command_line.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -347,9 +347,9 @@ std::string one_line(std::string_view text) {
 parse_result parse_command_line(int argc, const char* const* argv) {
   options o;
   CLI::App app{
-      "clothlab: mass-spring cloth simulation, the lab of shared/handout (single spring, "
-      "coupled springs, cloth on the CPU and the GPU).\nWithout --headless it opens the "
-      "interactive window.",
+      "clothlab: mass-spring cloth simulation, the lab of docs/lab.md (single spring, coupled "
+      "springs, cloth on the CPU and the GPU).\nWithout --headless it opens the interactive "
+      "window.",
       "clothlab"};
   app.set_version_flag("--version", std::string("clothlab ") + CLOTHLAB_VERSION);
   app.get_formatter()->column_width(34);
