@@ -474,7 +474,9 @@ case "$scenario" in
     # saw it), then the chain runs while the mouse moves, and the button is released. The drag
     # spring (K_d = 1000 N/m) holds the mass near the target: it ends nearer to the target than
     # a quarter of the way the target went from where it was grabbed.
-    press_and_pull coupled mass_point mass 3
+    # Held until the target has been still for 3 s of simulated time (under load the window
+    # runs far fewer steps a second of wall time), at most 40 s.
+    press_and_pull coupled mass_point mass 40 "still for 3 s of simulated time"
     grabbed=$(grep "grabbed mass" window.log | tail -n 1)
     released=$(grep "released mass" window.log | tail -n 1) || fail "no 'released mass' line"
     from=$(vector_after "at" "$grabbed")
