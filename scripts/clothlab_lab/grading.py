@@ -129,14 +129,56 @@ def build_base(work, lab, jobs):
     subprocess.run(["chmod", "-R", "go-w", str(base)], check=True)
 
 
+# The grader's additions to the kit's build, for speed only (the build is the copy's own
+# otherwise): the headers that the student's files include, precompiled once for the library
+# that holds those files, so that a submission's build compiles only its own code (a few
+# seconds less per submission on two cores). CMake runs it after the copy's CMakeLists.txt.
+SPEED_CMAKE = """# Written by scripts/grade (clothlab_lab/grading.py): the kit's build only.
+include_guard(GLOBAL)
+cmake_language(DEFER DIRECTORY "${{CMAKE_SOURCE_DIR}}" CALL _clothlab_grade_headers)
+function(_clothlab_grade_headers)
+  if(TARGET {target})
+    target_precompile_headers({target} PRIVATE {headers})
+  endif()
+endfunction()
+"""
+STUDENT_LIBRARY = "clothlab_core"  # src/core's library: where the student's C++ files are
+
+
+def speed_options(work, lab, folder):
+    """The configure options of the kit's build that make a submission's build shorter: the
+    precompiled headers above, and the gold linker where it works (it links the runner in a
+    tenth of the default linker's time here)."""
+    headers = []
+    for name in lab.student_files:
+        if name.endswith(".cpp") and (work / "stubs" / name).is_file():
+            for line in (work / "stubs" / name).read_text(errors="replace").splitlines():
+                match = re.match(r"\s*#\s*include\s*([<\"][^>\"]+[>\"])", line)
+                if match and match.group(1) not in headers:
+                    headers.append(match.group(1))
+    script = folder / "grade-speed.cmake"
+    script.write_text(SPEED_CMAKE.format(target=STUDENT_LIBRARY, headers=" ".join(
+        h if h.startswith("<") else f"[[{h}]]" for h in headers)))
+    options = [f"-DCMAKE_PROJECT_INCLUDE={script}"]
+    with tempfile.TemporaryDirectory(prefix="clothlab-grade-ld-") as tmp:
+        tried = subprocess.run(["c++", "-fuse-ld=gold", "-x", "c++", "-", "-o", f"{tmp}/a"],
+                               input="int main() { return 0; }\n", capture_output=True,
+                               text=True)
+    if tried.returncode == 0:
+        options.append("-DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=gold")
+    return options
+
+
 def build_outside(work, lab, jobs):
     folder = build_dir(work)
     if not (folder / "CMakeCache.txt").exists():
+        folder.mkdir(parents=True, exist_ok=True)
         generator = ["-G", "Ninja"] if shutil.which("ninja") else []
         # PRE_TEST: the test programs are listed when ctest runs, on the kit's build.
         configured = subprocess.run(
             ["cmake", "-S", str(kit_copy(work)), "-B", str(folder), *generator,
-             "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST"],
+             "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST",
+             *speed_options(work, lab, folder)],
             capture_output=True, text=True)
         if configured.returncode != 0:
             raise GradeError("cmake could not configure the student copy:\n" +
