@@ -135,6 +135,7 @@ class Kit:
                              f"lab ({', '.join(lab.ids)}) has none: make the kit again")
         self.guards = set(json.loads((work / "guards.json").read_text())) \
             if (work / "guards.json").is_file() else None
+        self.seconds = {}  # checker -> seconds of its last whole run (the longest start first)
 
     def verify(self):
         """GradeError unless every file of the kit is the one recorded when it was made."""
