@@ -16,6 +16,7 @@ import os
 import resource
 import shutil
 import signal
+import stat
 import subprocess
 import tempfile
 import time
@@ -149,9 +150,9 @@ class Sandbox:
         self.sized = False  # the scratch is a tmpfs of limits.scratch bytes
         self.cgroup = None
         self.kind, self.description = "none", "none (--no-sandbox): the tests run as the grader"
+        self.prepare_scratch()
         if not enabled:
             return
-        self.prepare_scratch()
         bwrap_says = self.try_bubblewrap()
         if bwrap_says is None:
             self.kind = "bubblewrap"
@@ -208,11 +209,12 @@ class Sandbox:
             subprocess.run(["umount", "--lazy", str(self.scratch)], capture_output=True)
 
     def reset(self, base, own=()):
-        """Ends every process of the submission's user, empties the scratch folder and, if base
-        is given, copies it there (the kit's copy and its build, root's: read-only to the
-        submission's user). Then makes each folder of `own` (names under the scratch) empty and
-        the submission's."""
+        """Ends every process of the submission's user, removes what it left in the machine's
+        shared places (the fallback), empties the scratch folder and, if base is given, copies
+        it there (the kit's copy and its build, root's: read-only to the submission's user).
+        Then makes each folder of `own` (names under the scratch) empty and the submission's."""
         self.end_all()
+        self.remove_leftovers()
         for child in self.scratch.iterdir() if self.scratch.exists() else ():
             if child.is_dir() and not child.is_symlink():
                 shutil.rmtree(child, ignore_errors=True)
@@ -265,6 +267,25 @@ class Sandbox:
                             "--clear-groups", "--", "/bin/sh", "-c", "kill -9 -1"],
                            capture_output=True)
             time.sleep(0.02)
+
+    def remove_leftovers(self):
+        """In the fallback, the submissions share their user and the machine's /tmp, /var/tmp,
+        /dev/shm and System V IPC: what one left there (a file, a shared memory segment) is
+        removed before the next one runs, so that nothing of one reaches another. (Bubblewrap
+        gives each its own /tmp, /dev and IPC namespace.)"""
+        if self.kind != "user" or not self.root:
+            return
+        for top in ("/tmp", "/var/tmp", "/dev/shm"):
+            remove_owned(Path(top), self.uid, depth=2)
+        for kind, flag, column in (("shm", "-m", 7), ("sem", "-s", 4), ("msg", "-q", 7)):
+            try:
+                rows = Path(f"/proc/sysvipc/{kind}").read_text().splitlines()[1:]
+            except OSError:
+                continue
+            for row in rows:
+                fields = row.split()
+                if len(fields) > column and fields[column] == str(self.uid):
+                    subprocess.run(["ipcrm", flag, fields[1]], capture_output=True)
 
     # -- running a command as the submission ---------------------------------------------
 
@@ -354,6 +375,30 @@ class Sandbox:
             stdin=subprocess.DEVNULL,
             preexec_fn=self.limit(seconds + 2, file_size or self.limits.file_size))
         return wait_then_end(process, seconds)
+
+
+def remove_owned(folder, uid, depth):
+    """Removes what uid owns in folder, and, `depth` levels down, in the folders there that
+    every user may write (sticky, like /tmp/.X11-unix); never through a link."""
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return
+    for entry in entries:
+        try:
+            info = entry.stat(follow_symlinks=False)
+        except OSError:
+            continue
+        if info.st_uid == uid:
+            if stat.S_ISDIR(info.st_mode):
+                shutil.rmtree(entry.path, ignore_errors=True)
+            else:
+                try:
+                    os.unlink(entry.path)
+                except OSError:
+                    pass
+        elif depth > 1 and stat.S_ISDIR(info.st_mode) and info.st_mode & 0o002:
+            remove_owned(Path(entry.path), uid, depth - 1)
 
 
 def processes_of(uid):

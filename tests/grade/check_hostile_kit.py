@@ -25,7 +25,8 @@ constructor) and again in the tests. The class, graded as root with bubblewrap:
   eve-control     a control byte (and a terminal's colour) in the compiler's first error: every
                   output stays valid (junit.xml parses)
   eve-cmdline     reads every process's /proc/PID/cmdline and looks for another student's
-                  solution (and the teacher's) under each path it names
+                  solution (and the teacher's) under each path it names, and for the files
+                  that eve-poison left in /tmp and /dev/shm
   dave            the solution (honest, last)
 Then a second grader run over the same --work: the honest student 80, the stubs 0, the kit's
 checkers and record unchanged. Then the same attacks with bubblewrap refused
@@ -176,9 +177,16 @@ class Class:
                   scratch / "copy/build-grade/tests/lab/lab_runner",
                   scratch / "copy/build-grade/tests/lab/poison",
                   scratch / "copy/shaders/gpu_step.frag", scratch.parent / "poison"]
+        # Left in the machine's shared places (the fallback's /tmp, /dev/shm), for the next
+        # student's code: eve-cmdline looks for them.
+        leftovers = [f"/tmp/{self.work.name}-leftover", f"/dev/shm/{self.work.name}-leftover"]
+        self.leftovers = leftovers
         eve = m.copy("eve-poison", cls, m.stubs)
         attack_at_start(m, eve, "#include <fcntl.h>\n#include <unistd.h>",
-                        "    bool hit = false;\n" + writes_any(reused) + "\n    return hit;")
+                        "    bool hit = false;\n" + writes_any(reused) + "\n"
+                        f"    for (const char* path : {{{', '.join(map(c_string, leftovers))}}})"
+                        "\n      ::close(::open(path, O_WRONLY | O_CREAT, 0644));\n"
+                        "    return hit;")
         made["eve-poison"] = eve
         targets = [self.autograder / "results/results.json"] + [
             self.work / out / "students" / name / "results.json"
@@ -236,6 +244,8 @@ class Class:
             "      }\n      ::closedir(proc);\n    }\n"
             f"    places.push_back({c_string(kit / 'staged/00000')});\n"
             f"    places.push_back({c_string(kit / 'staged/00001')});\n"
+            f"    for (const char* left : {{{', '.join(map(c_string, leftovers))}}})\n"
+            "      if (std::ifstream(left))\n        hit = true;  // another student's\n"
             "    for (const std::string& place : places)\n"
             "      for (const char* below : {\"/" + COUPLED + "\", \"/clothlab/" + COUPLED +
             "\"}) {\n"
@@ -358,6 +368,9 @@ def main():
                   "fallback: a results.json changed after the grader ended")
         check(not (c.outside / "fake-checker-ran").exists(), "the fake checker ran as root")
         check(snapshot(kept) == before, "the kit changed in the fallback")
+        check(not any(Path(p).exists() for p in c.leftovers),
+              f"fallback: what a submission left in /tmp or /dev/shm is still there: "
+              f"{[p for p in c.leftovers if Path(p).exists()]}")
 
         # 4. Gradescope: the daemon through the bundle's run_autograder, in the fallback.
         autograder(c, root, eves["eve-daemon"], fallback)
