@@ -49,6 +49,25 @@ void spring_mesh::list_springs() {
   spring_torn_.assign(spring_slot(particles_.size(), -2, -2), 0);
 }
 
+// One trial step of apply_force from the current state with every vertex moving (speed
+// (1, 1, 1), no force): a vertex whose position it leaves exactly as it was is pinned (a free
+// one moves by dt (1 - mu dt) along x at least). The state is put back.
+void spring_mesh::find_pins() {
+  const dynamics_parameters d = effective_parameters().dynamics;
+  if (!(d.time_step > 0.0) || d.damping * d.time_step == 1.0)
+    return;  // no trial can tell a pinned vertex from a free one
+  const particle_system state = particles_;
+  std::fill(particles_.velocity.begin(), particles_.velocity.end(), 1.0);
+  std::fill(particles_.force.begin(), particles_.force.end(), 0.0);
+  apply_force();
+  std::vector<std::uint8_t> pinned = state.is_fixed;
+  for (std::size_t k = 0; k < particles_.size(); ++k)
+    if (particles_.get_position(k) == state.get_position(k))
+      pinned[k] = 1;
+  particles_ = state;
+  particles_.is_fixed = std::move(pinned);
+}
+
 void spring_mesh::compute_normals() {
   normals_.resize(particles_.position.size());
   compute_vertex_normals(grid_size_, particles_.position, normals_);
@@ -69,9 +88,22 @@ void spring_mesh::add_drag_force() {
 void spring_mesh::integrate_step() {
   const cloth_parameters used = effective_parameters();
   const dynamics_parameters& d = used.dynamics;
-  if (d.integrator == integrator_kind::semi_implicit ||
-      d.integrator == integrator_kind::explicit_euler) {
+  if (d.integrator == integrator_kind::semi_implicit) {
     apply_force();  // question 6
+    return;
+  }
+  if (d.integrator == integrator_kind::explicit_euler) {
+    // Equation 6 taken literally (model.md): the speeds of apply_force (question 6), and every
+    // vertex that it moves moved by its speed at the start of the step, p + dt v(t).
+    stage_state_.position = particles_.position;
+    stage_state_.velocity = particles_.velocity;
+    apply_force();
+    std::span<glm::dvec3> p = as_vectors(particles_.position);
+    std::span<const glm::dvec3> p_start = as_vectors(stage_state_.position);
+    std::span<const glm::dvec3> v_start = as_vectors(stage_state_.velocity);
+    for (std::size_t k = 0; k < particles_.size(); ++k)
+      if (!particles_.is_fixed[k])
+        p[k] = p_start[k] + d.time_step * v_start[k];
     return;
   }
   const std::array<spring_set, 3> sets = spring_sets();
