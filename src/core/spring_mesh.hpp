@@ -128,10 +128,14 @@ class spring_mesh {
                                    // (and the state at the start of an explicit step)
   std::vector<double> stage_normals_;
   void list_springs();  // springs_ of the grid, each once (load_model)
-  // Marks in is_fixed every vertex that apply_force never moves (load_model): question 7 may
-  // pin the corners there or in apply_force (handout, section 4.3), and the rest of clothlab
-  // (the GPU path, the drawing, the mouse, the contacts) reads the pins from is_fixed.
-  void find_pins();
+  // What the rest of clothlab needs to know of the answers (load_model). The pins: every vertex
+  // that apply_force never moves is marked in is_fixed (question 7 may pin the corners there or
+  // in apply_force, as the handout's section 4.3 suggests), where the GPU path, the drawing,
+  // the mouse and the contacts read them. Gravity: whether compute_force adds the force m g
+  // (the handout's section 4.1) rather than apply_force the acceleration g, so that the
+  // stability lab's schemes, which add g themselves, take it off (forces_at).
+  void find_pins_and_gravity();
+  bool gravity_in_forces_ = false;
   void set_spring_torn(const spring& s);  // both ends' slots
   static std::size_t spring_slot(std::size_t k, int du, int dv) {
     return 25 * k + static_cast<std::size_t>(5 * (dv + 2) + (du + 2));

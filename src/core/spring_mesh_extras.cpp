@@ -49,23 +49,36 @@ void spring_mesh::list_springs() {
   spring_torn_.assign(spring_slot(particles_.size(), -2, -2), 0);
 }
 
-// One trial step of apply_force from the current state with every vertex moving (speed
-// (1, 1, 1), no force): a vertex whose position it leaves exactly as it was is pinned (a free
-// one moves by dt (1 - mu dt) along x at least). The state is put back.
-void spring_mesh::find_pins() {
+// The pins: one trial step of apply_force from the state at rest with every vertex moving (speed
+// (1, 1, 1), no force); a vertex whose position it leaves exactly as it was is pinned (a free one
+// moves by dt (1 - mu dt) along x at least). Gravity: compute_force on the cloth at rest without
+// wind gives the springs' forces, zero within rounding, plus m g if it adds gravity. The state
+// is put back.
+void spring_mesh::find_pins_and_gravity() {
   const dynamics_parameters d = effective_parameters().dynamics;
-  if (!(d.time_step > 0.0) || d.damping * d.time_step == 1.0)
-    return;  // no trial can tell a pinned vertex from a free one
   const particle_system state = particles_;
-  std::fill(particles_.velocity.begin(), particles_.velocity.end(), 1.0);
-  std::fill(particles_.force.begin(), particles_.force.end(), 0.0);
-  apply_force();
   std::vector<std::uint8_t> pinned = state.is_fixed;
-  for (std::size_t k = 0; k < particles_.size(); ++k)
-    if (particles_.get_position(k) == state.get_position(k))
-      pinned[k] = 1;
-  particles_ = state;
+  if (d.time_step > 0.0 && d.damping * d.time_step != 1.0) {  // else no trial can tell
+    std::fill(particles_.velocity.begin(), particles_.velocity.end(), 1.0);
+    std::fill(particles_.force.begin(), particles_.force.end(), 0.0);
+    apply_force();
+    for (std::size_t k = 0; k < particles_.size(); ++k)
+      if (particles_.get_position(k) == state.get_position(k))
+        pinned[k] = 1;
+    particles_ = state;
+  }
   particles_.is_fixed = std::move(pinned);
+
+  const double wind = parameters.wind_strength;
+  parameters.wind_strength = 0.0;
+  compute_force();
+  parameters.wind_strength = wind;
+  const glm::dvec3 weight = {0.0, 0.0, -d.mass * d.gravity};  // m g, N
+  bool with_gravity = weight.z != 0.0;
+  for (std::size_t k = 0; k < particles_.size() && with_gravity; ++k)
+    with_gravity = glm::length(particles_.get_force(k) - weight) < 0.5 * std::abs(weight.z);
+  gravity_in_forces_ = with_gravity;
+  particles_.force = state.force;
 }
 
 void spring_mesh::compute_normals() {
@@ -124,6 +137,11 @@ void spring_mesh::forces_at(std::span<const double> position, std::span<double> 
   std::swap(normals_, stage_normals_);
   compute_force();
   add_drag_force();
+  if (gravity_in_forces_) {  // the schemes add g themselves (find_pins_and_gravity)
+    const dynamics_parameters d = effective_parameters().dynamics;
+    for (glm::dvec3& f : as_vectors(particles_.force))
+      f.z += d.mass * d.gravity;
+  }
   std::copy(particles_.force.begin(), particles_.force.end(), force.begin());
   std::swap(particles_.position, stage_state_.position);
   std::swap(particles_.force, stage_state_.force);
