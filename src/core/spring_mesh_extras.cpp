@@ -115,7 +115,7 @@ void spring_mesh::integrate_step() {
     std::span<const glm::dvec3> p_start = as_vectors(stage_state_.position);
     std::span<const glm::dvec3> v_start = as_vectors(stage_state_.velocity);
     for (std::size_t k = 0; k < particles_.size(); ++k)
-      if (!particles_.is_fixed[k])
+      if (particles_.is_fixed[k] == 0)
         p[k] = p_start[k] + d.time_step * v_start[k];
     return;
   }
