@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace clothlab::lab {
 
@@ -90,6 +91,22 @@ inline std::string force_message(const glm::dvec3& got, const glm::dvec3& expect
                                  double tolerance, const std::string& what,
                                  const std::string& reversed) {
   return glm::length(expected) > tolerance && near(got, -expected, tolerance) ? reversed : what;
+}
+
+// A sum of forces of several kinds (the spring families), each with its name.
+struct force_part {
+  std::string name;
+  glm::dvec3 force;
+};
+
+// The name of the part that got has reversed (got = expected - 2 part: that kind of force with
+// the wrong sign, the others right), or empty.
+inline std::string reversed_part(const glm::dvec3& got, const glm::dvec3& expected,
+                                 const std::vector<force_part>& parts, double tolerance) {
+  for (const force_part& part : parts)
+    if (glm::length(part.force) > tolerance && near(got, expected - 2.0 * part.force, tolerance))
+      return part.name;
+  return {};
 }
 
 // True when a check that came out `ok` needs no message: it passed, or the test has already

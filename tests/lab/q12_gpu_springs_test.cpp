@@ -36,11 +36,11 @@ double force_tolerance(int springs, double K, double size) {
 }
 
 // What a force of the wrong sign says.
-std::string reversed(const std::string& where) {
-  return "Q12: " + where +
-         " feels its springs with the wrong sign (pushed where a stretched spring pulls, and "
-         "pulled where a compressed one pushes): equation 2, spring_force(p_i, p_j, K, L0), is "
-         "the force ON p_i; which of the two is this texel's position p?";
+std::string reversed(const std::string& where, const std::string& springs = "springs") {
+  return "Q12: " + where + " feels its " + springs +
+         " with the wrong sign (pushed where a stretched spring pulls, and pulled where a "
+         "compressed one pushes): equation 2, spring_force(p_i, p_j, K, L0), is the force ON "
+         "p_i; which of the two is this texel's position p?";
 }
 
 // A still N x N cloth of side S with the given stiffnesses (0 turns a family off); no gravity,
@@ -81,28 +81,50 @@ std::string texel(int ku, int kv) {
   return "(" + std::to_string(ku) + ", " + std::to_string(kv) + ")";
 }
 
-// The force on s(ku, kv) by hand: equation 2 for each of the 12 neighbours of figure 6 that is
-// inside the N x N grid, with its family's stiffness and rest length (h, h sqrt 2, 2h).
-glm::dvec3 expected_force(const spring_mesh& cloth, int ku, int kv, double h, double k_structural,
-                          double k_shear, double k_bending) {
+// The force on s(ku, kv) by hand, family by family: equation 2 for each of the 12 neighbours of
+// figure 6 that is inside the N x N grid, with its family's stiffness and rest length (h,
+// h sqrt 2, 2h).
+std::vector<lab::force_part> family_forces(const spring_mesh& cloth, int ku, int kv, double h,
+                                           double k_structural, double k_shear, double k_bending) {
   struct neighbour {
-    int du, dv;
-    double K, L0;
+    int du, dv, family;
   };
   const double r2 = std::sqrt(2.0);
-  const neighbour neighbours[] = {
-      {1, 0, k_structural, h},   {-1, 0, k_structural, h}, {0, 1, k_structural, h},
-      {0, -1, k_structural, h},  {1, 1, k_shear, h * r2},  {-1, -1, k_shear, h * r2},
-      {1, -1, k_shear, h * r2},  {-1, 1, k_shear, h * r2}, {2, 0, k_bending, 2 * h},
-      {-2, 0, k_bending, 2 * h}, {0, 2, k_bending, 2 * h}, {0, -2, k_bending, 2 * h}};
+  const double K[] = {k_structural, k_shear, k_bending}, L0[] = {h, h * r2, 2 * h};
+  const neighbour neighbours[] = {{1, 0, 0}, {-1, 0, 0},  {0, 1, 0},  {0, -1, 0},
+                                  {1, 1, 1}, {-1, -1, 1}, {1, -1, 1}, {-1, 1, 1},
+                                  {2, 0, 2}, {-2, 0, 2},  {0, 2, 2},  {0, -2, 2}};
   const int n = grid(cloth);
-  glm::dvec3 f(0.0);
+  std::vector<lab::force_part> parts = {{"structural springs", glm::dvec3(0.0)},
+                                        {"shear springs", glm::dvec3(0.0)},
+                                        {"bending springs", glm::dvec3(0.0)}};
   for (const neighbour& o : neighbours) {
     const int u = ku + o.du, v = kv + o.dv;
     if (u >= 0 && u < n && v >= 0 && v < n)
-      f += spring_force(position_of(cloth, ku, kv), position_of(cloth, u, v), o.K, o.L0);
+      parts[std::size_t(o.family)].force += spring_force(
+          position_of(cloth, ku, kv), position_of(cloth, u, v), K[o.family], L0[o.family]);
   }
+  return parts;
+}
+
+glm::dvec3 expected_force(const spring_mesh& cloth, int ku, int kv, double h, double k_structural,
+                          double k_shear, double k_bending) {
+  glm::dvec3 f(0.0);
+  for (const lab::force_part& part :
+       family_forces(cloth, ku, kv, h, k_structural, k_shear, k_bending))
+    f += part.force;
   return f;
+}
+
+// The message of a force test of texel (ku, kv), whose springs of several families are summed:
+// `what`, or, when the answer has one family's force reversed, that family's sign error.
+std::string family_message(const glm::dvec3& got, const spring_mesh& cloth, int ku, int kv,
+                           double h, double k_structural, double k_shear, double k_bending,
+                           double tolerance, const std::string& where, const std::string& what) {
+  const std::string family = lab::reversed_part(
+      got, expected_force(cloth, ku, kv, h, k_structural, k_shear, k_bending),
+      family_forces(cloth, ku, kv, h, k_structural, k_shear, k_bending), tolerance);
+  return family.empty() ? what : reversed(where, family);
 }
 
 // Every texel of an N x N cloth (S = N - 1, h = 1) moved off its place by a smooth,
@@ -140,12 +162,15 @@ TEST_F(Q12GpuSprings, TheDisplacedCentreFeelsAllTwelveSprings) {
   const glm::dvec3 c = {0.3, -0.2, 0.5};
   const spring_mesh cloth = displaced_centre(c);
   const auto force = gpu_forces(cloth, still_cloth(5, 4.0, K_structural, K_shear, K_bending));
+  const double tolerance = force_tolerance(12, K_structural, 2.5);
   LAB_EXPECT_FORCE(at(force, cloth, 2, 2),
-                   expected_force(cloth, 2, 2, 1.0, K_structural, K_shear, K_bending),
-                   force_tolerance(12, K_structural, 2.5),
-                   "Q12: the centre texel (2, 2), moved off its rest place, should be pulled back "
-                   "by the springs to its 12 neighbours (4 structural, 4 shear, 4 bending): its "
-                   "new velocity is dt F / m. Does the velocity shader add the spring forces?",
+                   expected_force(cloth, 2, 2, 1.0, K_structural, K_shear, K_bending), tolerance,
+                   family_message(at(force, cloth, 2, 2), cloth, 2, 2, 1.0, K_structural, K_shear,
+                                  K_bending, tolerance, "the centre texel (2, 2)",
+                                  "Q12: the centre texel (2, 2), moved off its rest place, should "
+                                  "be pulled back by the springs to its 12 neighbours (4 "
+                                  "structural, 4 shear, 4 bending): its new velocity is dt F / m. "
+                                  "Does the velocity shader add the spring forces?"),
                    reversed("the centre texel (2, 2), moved off its rest place,"));
 }
 
@@ -159,12 +184,15 @@ TEST_F(Q12GpuSprings, EachNeighbourFeelsItsSpringToTheCentre) {
   } neighbours[] = {{3, 2, "structural"}, {2, 1, "structural"}, {3, 3, "shear"},
                     {1, 3, "shear"},      {4, 2, "bending"},    {2, 0, "bending"}};
   for (const auto& n : neighbours) {
-    LAB_EXPECT_FORCE(at(force, cloth, n.ku, n.kv),
-                     expected_force(cloth, n.ku, n.kv, 1.0, K_structural, K_shear, K_bending),
-                     force_tolerance(12, K_structural, 2.5),
-                     "Q12: texel " + texel(n.ku, n.kv) + " should feel its " + n.family +
-                         " spring to the displaced centre (2, 2), and nothing else",
-                     reversed("texel " + texel(n.ku, n.kv)));
+    const double tolerance = force_tolerance(12, K_structural, 2.5);
+    LAB_EXPECT_FORCE(
+        at(force, cloth, n.ku, n.kv),
+        expected_force(cloth, n.ku, n.kv, 1.0, K_structural, K_shear, K_bending), tolerance,
+        family_message(at(force, cloth, n.ku, n.kv), cloth, n.ku, n.kv, 1.0, K_structural, K_shear,
+                       K_bending, tolerance, "texel " + texel(n.ku, n.kv),
+                       "Q12: texel " + texel(n.ku, n.kv) + " should feel its " + n.family +
+                           " spring to the displaced centre (2, 2), and nothing else"),
+        reversed("texel " + texel(n.ku, n.kv)));
   }
 }
 
@@ -250,10 +278,14 @@ TEST_F(Q12GpuSprings, EachFamilyUsesItsOwnStiffness) {
   const glm::dvec3 expected = spring_force(lifted, position_of(cloth, 0, 1), 300.0, 1.0) +
                               spring_force(lifted, position_of(cloth, 1, 0), 300.0, 1.0) +
                               spring_force(lifted, position_of(cloth, 0, 0), 70.0, std::sqrt(2.0));
-  LAB_EXPECT_FORCE(at(force, cloth, 1, 1), expected, force_tolerance(3, 300.0, 1.0),
-                   "Q12: with K_struct = 300 and K_shear = 70, texel (1, 1) lifted by 0.5 m "
-                   "should feel two structural springs with stiffness[0] and one shear spring "
-                   "with stiffness[1]: the family of neighbour i is neighbours[i].z",
+  const double tolerance = force_tolerance(3, 300.0, 1.0);
+  LAB_EXPECT_FORCE(at(force, cloth, 1, 1), expected, tolerance,
+                   family_message(at(force, cloth, 1, 1), cloth, 1, 1, 1.0, 300.0, 70.0, 11.0,
+                                  tolerance, "texel (1, 1), lifted by 0.5 m,",
+                                  "Q12: with K_struct = 300 and K_shear = 70, texel (1, 1) lifted "
+                                  "by 0.5 m should feel two structural springs with stiffness[0] "
+                                  "and one shear spring with stiffness[1]: the family of "
+                                  "neighbour i is neighbours[i].z"),
                    reversed("texel (1, 1), lifted by 0.5 m,"));
 }
 
@@ -270,9 +302,13 @@ TEST_F(Q12GpuSprings, ACornerTexelReadsNoNeighbourOutsideTheGrid) {
                        spring_force(corner, position_of(cloth, 1, 1), K_shear, std::sqrt(2.0)) +
                        spring_force(corner, position_of(cloth, 2, 0), K_bending, 2) +
                        spring_force(corner, position_of(cloth, 0, 2), K_bending, 2);
-  LAB_EXPECT_FORCE(at(force, cloth, 0, 0), f, force_tolerance(5, K_structural, 2.5),
-                   "Q12: the corner texel (0, 0) has springs to (1, 0), (0, 1), (1, 1), (2, 0) "
-                   "and (0, 2) only: texels outside the N x N grid must be skipped",
+  const double tolerance = force_tolerance(5, K_structural, 2.5);
+  LAB_EXPECT_FORCE(at(force, cloth, 0, 0), f, tolerance,
+                   family_message(at(force, cloth, 0, 0), cloth, 0, 0, 1.0, K_structural, K_shear,
+                                  K_bending, tolerance, "the corner texel (0, 0)",
+                                  "Q12: the corner texel (0, 0) has springs to (1, 0), (0, 1), "
+                                  "(1, 1), (2, 0) and (0, 2) only: texels outside the N x N grid "
+                                  "must be skipped"),
                    reversed("the corner texel (0, 0)"));
 }
 
@@ -287,10 +323,13 @@ TEST_F(Q12GpuSprings, EveryTexelFeelsOnlyTheSpringsInsideTheGrid) {
       k, 4 * 4, at(force, cloth, int(k % 4), int(k / 4)),
       expected_force(cloth, int(k % 4), int(k / 4), 1.0, 40.0, 30.0, 20.0),
       force_tolerance(12, 40.0, 2.0),
-      "Q12: " + place(int(k % 4), int(k / 4), 4) +
-          " of a deformed 4 x 4 cloth should feel the springs to its neighbours "
-          "inside the grid, and none to texels outside it (int(k % 4) or int(k / 4) < 0 or > N-1 "
-          "= 3: skip them, joined(k, i) says which)",
+      family_message(at(force, cloth, int(k % 4), int(k / 4)), cloth, int(k % 4), int(k / 4), 1.0,
+                     40.0, 30.0, 20.0, force_tolerance(12, 40.0, 2.0),
+                     place(int(k % 4), int(k / 4), 4),
+                     "Q12: " + place(int(k % 4), int(k / 4), 4) +
+                         " of a deformed 4 x 4 cloth should feel the springs to its neighbours "
+                         "inside the grid, and none to texels outside it (int(k % 4) or "
+                         "int(k / 4) < 0 or > N-1 = 3: skip them, joined(k, i) says which)"),
       reversed(place(int(k % 4), int(k / 4), 4)));
 }
 
