@@ -131,6 +131,9 @@ void spring_mesh::integrate_step() {
 // current state (with its normals) is put back after.
 void spring_mesh::forces_at(std::span<const double> position, std::span<double> force) {
   stage_state_.position.assign(position.begin(), position.end());
+  // The current normals stand in until compute_force computes the stage's (with the wind only):
+  // an answer may read normals[k] whatever K_w.
+  stage_normals_.assign(normals_.begin(), normals_.end());
   stage_state_.force.resize(particles_.force.size());
   std::swap(particles_.position, stage_state_.position);
   std::swap(particles_.force, stage_state_.force);
