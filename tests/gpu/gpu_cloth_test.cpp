@@ -299,7 +299,10 @@ TEST_F(SolutionGpuCloth, NormalTextureHoldsTheNormalsOfTheCurrentPositions) {
     }
   }
   EXPECT_LE(largest, 1e-4);  // unit vectors from positions that agree within 1e-5 m, h = 0.09 m
-  EXPECT_GT(cpu.normals()[3 * spring_mesh::index(5, 5, grid_size) + 1], 0.01);  // curved
+  double tilt = 0.0;         // curved, whichever two corners question 7 pins: some normal leans
+  for (std::size_t k = 0; k < cpu.particles().size(); ++k)
+    tilt = std::max(tilt, std::hypot(cpu.normals()[3 * k], cpu.normals()[3 * k + 1]));
+  EXPECT_GT(tilt, 0.01);
 }
 
 TEST_F(GpuCloth, StepLeavesTheCallersGlStateAsItFoundIt) {
