@@ -59,13 +59,13 @@ chain_state() {  # CSV
     END {
       if (n < 3) { print "unknown"; exit }
       d = sqrt((x[n] - x[n-1])^2 + (y[n] - y[n-1])^2 + (z[n] - z[n-1])^2)
-      if (d > 2) printf "its last mass fell away (%.3g m below the one above it)\n", z[n-1] - z[n]
-      else print "hangs and sways"
+      if (d > 2) printf "its last mass fell away, %.3g m below the one above it\n", z[n-1] - z[n]
+      else print "the chain hangs and sways"
     }' "$1" 2>/dev/null || echo unknown
 }
 if [ -f "$states/chain.csv" ]; then
   chain=$(chain_state "$states/chain.csv")
-  echo "clothlab: what the chain picture shows (out/coupled.png): the chain $chain."
+  echo "clothlab: what the chain picture shows (out/coupled.png): $chain."
   case "$chain" in
     its\ last*) echo "          Its lower spring pulls no mass: question 5 (coupled_springs::compute_force)." ;;
   esac
