@@ -5,7 +5,7 @@ The class is made from the solution and the student copy (scripts/make-student-v
   alice  every question right, handed in as a bare git repository
   bob    the student copy as handed out: every question a stub
   carol  Q5, Q6, Q7 wrong in a plausible way (Newton's third law forgotten, the mass ignored,
-         the wrong corner pinned)
+         the middle of an edge pinned)
   dave   Q8, Q9, Q12, Q13 wrong (shear springs as stiff as structural ones, the ground does not
          stop the fall, one stiffness on the GPU, the GPU wind blowing backwards)
   erin   right, but coupled_springs.cpp does not compile
@@ -147,7 +147,7 @@ def make_class(maker, dest, outside):
     carol = maker.copy("carol", dest)
     maker.change(carol, "Q5", "add(i - 1, -F);", "")
     maker.change(carol, "Q6", "get_force(k) / m + g", "get_force(k) + g")
-    maker.change(carol, "Q7", "index(n - 1, 0, n)", "index(n - 1, n - 1, n)")
+    maker.change(carol, "Q7", "index(n - 1, 0, n)", "index(n / 2, 0, n)")  # not a corner
     subs.append(carol)
     dave = maker.copy("dave", dest)
     maker.change(dave, "Q8", "K_shear, L0", "K_structural, L0")
