@@ -1,7 +1,8 @@
 // The handout's spring_mesh (section 4): what a student reads and writes for questions 6 to 9
-// and 13. What the rest of clothlab needs from the cloth is beside it: spring_mesh_step.cpp (the
-// mouse drag, the stability lab's schemes, the constraints), spring_mesh_geometry.cpp (the
-// springs' list, the normals) and tearing.cpp.
+// and 13, in the handout's order: apply_force (6), the pins in load_model (7), compute_force (8,
+// and the wind of 13), the ground (9). What the rest of clothlab needs from the cloth is beside it:
+// spring_mesh_step.cpp (the mouse drag, the stability lab's schemes, the constraints),
+// spring_mesh_geometry.cpp (the springs' list, the normals) and tearing.cpp.
 #include "core/spring_mesh.hpp"
 
 #include <algorithm>
@@ -12,6 +13,50 @@ namespace clothlab {
 
 spring_mesh::spring_mesh(const cloth_parameters& p) : parameters(p) {
   load_model();
+}
+
+void spring_mesh::apply_force() {
+  // dt, the damping mu, the mass m (at this N: question 10) and g0, the handout's 9.8 m/s^2.
+  const dynamics_parameters d = effective_parameters().dynamics;
+  std::span<glm::dvec3> vertices = as_vectors(particles_.position);   // m
+  std::span<glm::dvec3> speed = as_vectors(particles_.velocity);      // m/s
+  std::span<const glm::dvec3> forces = as_vectors(particles_.force);  // N, from compute_force
+  // BEGIN SOLUTION Q6: apply_force, the handout's two loops
+  // STUDENT(handout)| // TODO Q6 (apply_force): integrate the vertices over one step dt by the
+  // STUDENT(handout)| // handout's explicit Euler in its code order: the pseudo-code of section 4.3
+  // STUDENT(handout)| // (its two loops over the vertices). The acceleration is the force over the
+  // STUDENT(handout)| // mass m = d.mass plus gravity g = (0, 0, -d.gravity) (equation 4), with the
+  // STUDENT(handout)| // damping mu = d.damping and dt = d.time_step. A fixed vertex
+  // STUDENT(handout)| // (particles_.is_fixed[k]) never moves: the pins, the mouse and the GPU path
+  // STUDENT(handout)| // count on it. (--integrator explicit, equation 6 taken literally, is built on
+  // STUDENT(handout)| // this function: nothing to write for it.) For now every vertex falls freely.
+  // STUDENT(handout)| // Done when ./test.sh -L q6 passes.
+  // STUDENT(guided)| // TODO Q6 (apply_force): with dt = d.time_step, mu = d.damping, m = d.mass and
+  // STUDENT(guided)| // g = (0, 0, -d.gravity), for every vertex k that is not fixed
+  // STUDENT(guided)| // (particles_.is_fixed[k] == 0),
+  // STUDENT(guided)| //   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
+  // STUDENT(guided)| // then, in a second loop, vertices[k] += dt speed[k]. (--integrator explicit
+  // STUDENT(guided)| // is built on this function.) For now every vertex falls freely.
+  // STUDENT| const double dt = d.time_step;
+  // STUDENT| const glm::dvec3 g = {0.0, 0.0, -d.gravity};
+  // STUDENT| for (std::size_t k = 0; k < vertices.size(); ++k) {
+  // STUDENT|   if (!particles_.is_fixed[k]) {
+  // STUDENT|     speed[k] += dt * g;
+  // STUDENT|     vertices[k] += dt * speed[k];
+  // STUDENT|   }
+  // STUDENT| }
+  const double dt = d.time_step;                // s
+  const double mu = d.damping;                  // 1/s
+  const double m = d.mass;                      // kg
+  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
+  // The handout's pseudo-code (section 4.3), a fixed vertex left as it is (question 7).
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    if (!particles_.is_fixed[k])
+      speed[k] = (1 - dt * mu) * speed[k] + dt * (forces[k] / m + g);
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    if (!particles_.is_fixed[k])
+      vertices[k] += dt * speed[k];
+  // END SOLUTION Q6
 }
 
 void spring_mesh::load_model() {
@@ -145,50 +190,6 @@ void spring_mesh::compute_force() {
       forces[k] = f;
     }
   }
-}
-
-void spring_mesh::apply_force() {
-  // dt, the damping mu, the mass m (at this N: question 10) and g0, the handout's 9.8 m/s^2.
-  const dynamics_parameters d = effective_parameters().dynamics;
-  std::span<glm::dvec3> vertices = as_vectors(particles_.position);   // m
-  std::span<glm::dvec3> speed = as_vectors(particles_.velocity);      // m/s
-  std::span<const glm::dvec3> forces = as_vectors(particles_.force);  // N, from compute_force
-  // BEGIN SOLUTION Q6: apply_force, the handout's two loops
-  // STUDENT(handout)| // TODO Q6 (apply_force): integrate the vertices over one step dt by the
-  // STUDENT(handout)| // handout's explicit Euler in its code order: the pseudo-code of section 4.3
-  // STUDENT(handout)| // (its two loops over the vertices). The acceleration is the force over the
-  // STUDENT(handout)| // mass m = d.mass plus gravity g = (0, 0, -d.gravity) (equation 4), with the
-  // STUDENT(handout)| // damping mu = d.damping and dt = d.time_step. A fixed vertex
-  // STUDENT(handout)| // (particles_.is_fixed[k]) never moves: the pins, the mouse and the GPU path
-  // STUDENT(handout)| // count on it. (--integrator explicit, equation 6 taken literally, is built on
-  // STUDENT(handout)| // this function: nothing to write for it.) For now every vertex falls freely.
-  // STUDENT(handout)| // Done when ./test.sh -L q6 passes.
-  // STUDENT(guided)| // TODO Q6 (apply_force): with dt = d.time_step, mu = d.damping, m = d.mass and
-  // STUDENT(guided)| // g = (0, 0, -d.gravity), for every vertex k that is not fixed
-  // STUDENT(guided)| // (particles_.is_fixed[k] == 0),
-  // STUDENT(guided)| //   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
-  // STUDENT(guided)| // then, in a second loop, vertices[k] += dt speed[k]. (--integrator explicit
-  // STUDENT(guided)| // is built on this function.) For now every vertex falls freely.
-  // STUDENT| const double dt = d.time_step;
-  // STUDENT| const glm::dvec3 g = {0.0, 0.0, -d.gravity};
-  // STUDENT| for (std::size_t k = 0; k < vertices.size(); ++k) {
-  // STUDENT|   if (!particles_.is_fixed[k]) {
-  // STUDENT|     speed[k] += dt * g;
-  // STUDENT|     vertices[k] += dt * speed[k];
-  // STUDENT|   }
-  // STUDENT| }
-  const double dt = d.time_step;                // s
-  const double mu = d.damping;                  // 1/s
-  const double m = d.mass;                      // kg
-  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
-  // The handout's pseudo-code (section 4.3), a fixed vertex left as it is (question 7).
-  for (std::size_t k = 0; k < vertices.size(); ++k)
-    if (!particles_.is_fixed[k])
-      speed[k] = (1 - dt * mu) * speed[k] + dt * (forces[k] / m + g);
-  for (std::size_t k = 0; k < vertices.size(); ++k)
-    if (!particles_.is_fixed[k])
-      vertices[k] += dt * speed[k];
-  // END SOLUTION Q6
 }
 
 void apply_ground_contact(double ground_height, double ground_friction, double time_step,
