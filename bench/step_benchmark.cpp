@@ -15,6 +15,10 @@
 // a machine without a GPU that is llvmpipe, Mesa's software rasteriser on the CPU, so it
 // measures the shader path, not a GPU.
 // Both run the default cloth (two pinned corners, ground) for N x N particles.
+// xpbd/<backend>/N: the same cloth stepped by XPBD (--integrator xpbd, its default 10 substeps of
+// one sweep) on the paths that have it (cpu, cpu-parallel, gpu-compute), at the same dt: a step
+// of XPBD against a step of the mass-spring paths. scripts/benchmark puts them side by side with
+// the largest dt each integrator stays stable at (a clothlab --sweep), which is what a step buys.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -29,6 +33,7 @@
 
 #include "core/cloth_parallel.hpp"
 #include "core/spring_mesh.hpp"
+#include "core/xpbd.hpp"
 #include "gl/gl.hpp"
 #include "gl/gl_context.hpp"
 #include "gl/gpu_cloth.hpp"
@@ -44,6 +49,12 @@ clothlab::cloth_parameters cloth_of_size(int n) {
   return p;
 }
 
+clothlab::cloth_parameters xpbd_cloth_of_size(int n) {
+  clothlab::cloth_parameters p = cloth_of_size(n);
+  p.dynamics.integrator = clothlab::integrator_kind::xpbd;
+  return p;
+}
+
 // steps/s, and the time per spring (each spring of the three families counted once), for
 // steps_per_iteration steps per iteration of the benchmark's loop.
 void count_steps(benchmark::State& state, int n, int steps_per_iteration = 1) {
@@ -54,9 +65,10 @@ void count_steps(benchmark::State& state, int n, int steps_per_iteration = 1) {
       steps * springs, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+template <clothlab::cloth_parameters (*Cloth)(int) = cloth_of_size>
 void cpu_step(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  clothlab::spring_mesh cloth(cloth_of_size(n));
+  clothlab::spring_mesh cloth(Cloth(n));
   for (auto _ : state) {
     cloth.step();
     benchmark::DoNotOptimize(cloth.particles().position.data());
@@ -64,9 +76,10 @@ void cpu_step(benchmark::State& state) {
   count_steps(state, n);
 }
 
+template <clothlab::cloth_parameters (*Cloth)(int) = cloth_of_size>
 void cpu_parallel_step(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const clothlab::cloth_parameters p = cloth_of_size(n);
+  const clothlab::cloth_parameters p = Cloth(n);
   if (!clothlab::cloth_parallel::available()) {
     state.SkipWithError(clothlab::cloth_parallel::unavailable_reason());
     return;
@@ -121,13 +134,13 @@ void warm_up_until_steady(RunAndWait run_and_wait) {
 
 // One benchmark's GPU path, loaded with the default cloth of size n: its run(p, count), then
 // glFinish. Path: gpu_cloth or gpu_cloth_compute.
-template <typename Path>
+template <typename Path, clothlab::cloth_parameters (*Cloth)(int) = cloth_of_size>
 struct loaded_gpu_path {
   clothlab::cloth_parameters parameters;
   Path path;
   bool loaded = false;
 
-  loaded_gpu_path(benchmark::State& state, int n) : parameters(cloth_of_size(n)) {
+  loaded_gpu_path(benchmark::State& state, int n) : parameters(Cloth(n)) {
     if (offscreen_context() == nullptr) {
       state.SkipWithError("no off-screen OpenGL context");
       return;
@@ -139,7 +152,7 @@ struct loaded_gpu_path {
       return;
     }
     loaded = true;
-    // Once per path and size: the library calls a benchmark again for each count of
+    // Once per path, cloth and size: the library calls a benchmark again for each count of
     // iterations it tries, and the GPU is warm by then.
     static std::set<int> warmed_up;
     if (warmed_up.insert(n).second)
@@ -152,10 +165,10 @@ struct loaded_gpu_path {
 };
 
 // One step, then waiting for it: step/gpu/N and step/gpu-compute/N.
-template <typename Path>
+template <typename Path, clothlab::cloth_parameters (*Cloth)(int) = cloth_of_size>
 void gpu_step(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  loaded_gpu_path<Path> gpu(state, n);
+  loaded_gpu_path<Path, Cloth> gpu(state, n);
   if (!gpu.loaded)
     return;
   for (auto _ : state)
@@ -181,7 +194,7 @@ void gpu_batch(benchmark::State& state) {
 
 // Wall-clock time: the threads of cpu-parallel and of llvmpipe are missed by the process's
 // CPU time of the main thread.
-BENCHMARK(cpu_step)
+BENCHMARK(cpu_step<>)
     ->Name("step/cpu")
     ->Arg(32)  // (scripts/benchmark-web: the browser's CPU path at N = 32 and 64)
     ->RangeMultiplier(2)
@@ -205,7 +218,7 @@ BENCHMARK(gpu_batch<clothlab::gpu_cloth>)
 // listed only where they exist: a run shows no row that could not run.
 void register_optional_paths() {
   if (clothlab::cloth_parallel::available()) {
-    benchmark::RegisterBenchmark("step/cpu-parallel", cpu_parallel_step)
+    benchmark::RegisterBenchmark("step/cpu-parallel", cpu_parallel_step<>)
         ->RangeMultiplier(2)
         ->Range(64, 1024)
         ->UseRealTime()
@@ -213,6 +226,29 @@ void register_optional_paths() {
   } else {
     std::fprintf(stderr, "clothlab_bench: no step/cpu-parallel: %s\n",
                  clothlab::cloth_parallel::unavailable_reason());
+  }
+  // XPBD, where this copy has it (not the student's).
+  if (clothlab::xpbd_available()) {
+    benchmark::RegisterBenchmark("xpbd/cpu", cpu_step<xpbd_cloth_of_size>)
+        ->RangeMultiplier(2)
+        ->Range(64, 256)
+        ->UseRealTime()
+        ->Unit(benchmark::kMicrosecond);
+    if (clothlab::cloth_parallel::available()) {
+      benchmark::RegisterBenchmark("xpbd/cpu-parallel", cpu_parallel_step<xpbd_cloth_of_size>)
+          ->RangeMultiplier(2)
+          ->Range(64, 256)
+          ->UseRealTime()
+          ->Unit(benchmark::kMicrosecond);
+    }
+    if (std::filesystem::exists(clothlab::shader_path("gpu_xpbd_solve.comp"))) {
+      benchmark::RegisterBenchmark("xpbd/gpu-compute",
+                                   gpu_step<clothlab::gpu_cloth_compute, xpbd_cloth_of_size>)
+          ->RangeMultiplier(2)
+          ->Range(64, 256)
+          ->UseRealTime()
+          ->Unit(benchmark::kMicrosecond);
+    }
   }
   if (std::filesystem::exists(clothlab::shader_path("gpu_compute_step.comp"))) {
     benchmark::RegisterBenchmark("step/gpu-compute", gpu_step<clothlab::gpu_cloth_compute>)

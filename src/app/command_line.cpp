@@ -104,7 +104,8 @@ void add_options(CLI::App& app, options& o, given_values& given) {
     integrators.emplace_back(integrator_name(kind));
   app.add_option(
          "--integrator", given.integrator,
-         "semi-implicit (default) | explicit | verlet | rk4 | implicit (GPU: the first two)")
+         "semi-implicit (default) | explicit | verlet | rk4 | implicit | xpbd (gpu: the first "
+         "two; cpu-parallel and gpu-compute: these and xpbd)")
       ->check(CLI::IsMember(integrators));
   app.add_option("--steps", o.steps, "Steps to run, headless (default 1000)")->transform(decimal);
   const stage_structs structs = structs_of(o);

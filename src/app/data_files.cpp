@@ -22,8 +22,10 @@ bool data_files_present(const options& o, std::string& error) {
                               "gpu_normal.frag", "gpu_tear.frag", "gpu_check.frag"});
   }
   if (o.stage == stage_kind::cloth && o.backend == cloth_backend::gpu_compute) {
-    shaders("--backend gpu-compute", {"gpu_compute_step.comp", "gpu_cloth_common.glsl",
-                                      "gpu_compute_normal.comp", "gpu_compute_tear.comp"});
+    shaders("--backend gpu-compute",
+            {"gpu_compute_step.comp", "gpu_cloth_common.glsl", "gpu_compute_normal.comp",
+             "gpu_compute_tear.comp", "gpu_xpbd_predict.comp", "gpu_xpbd_solve.comp",
+             "gpu_xpbd_velocity.comp"});
   }
   if (!o.png_path.empty()) {
     const std::string option = "--png " + o.png_path;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/cloth_parallel.hpp"
+#include "core/xpbd.hpp"
 
 namespace clothlab {
 namespace {
@@ -37,6 +38,15 @@ void check_other_ranges(options& o, const given_values& values) {
             "mu dt = " + format_number(d.damping * d.time_step) + " for the " + chosen +
                 " stage (dt = " + format_number(d.time_step) +
                 ") must be at most 1 (the damping factor 1 - mu dt would be negative)");
+  }
+  // XPBD multiplies the velocity by (1 - mu h) every substep h = dt / substeps.
+  if (d.integrator == integrator_kind::xpbd) {
+    const double substep = d.time_step / d.xpbd.substeps;
+    require(d.damping * substep <= 1, "--mu", d.damping,
+            "mu h = " + format_number(d.damping * substep) + " for the " + chosen +
+                " stage (XPBD's substep h = dt / " + std::to_string(d.xpbd.substeps) + " = " +
+                format_number(substep) +
+                ") must be at most 1 (the damping factor 1 - mu h would be negative)");
   }
   const std::string& wind_dir = values.wind_dir;
   if (cloth.wind_direction == glm::dvec3(0.0))
@@ -93,11 +103,28 @@ void check_combinations(const options& o, const given_values& values, const give
                       ": this path simulates the cloth; use it with "
                       "--stage cloth"};
   }
-  if (o.backend != cloth_backend::cpu &&
-      o.cloth.dynamics.integrator != integrator_kind::semi_implicit &&
-      o.cloth.dynamics.integrator != integrator_kind::explicit_euler) {
+  const integrator_kind integrator = o.stage == stage_kind::spring ? o.spring.dynamics.integrator
+                                     : o.stage == stage_kind::coupled
+                                         ? o.coupled.dynamics.integrator
+                                         : o.cloth.dynamics.integrator;
+  if (integrator == integrator_kind::xpbd && !xpbd_available())
+    throw usage_error{"--integrator " + values.integrator + ": " + xpbd_unavailable_reason()};
+  if (integrator == integrator_kind::xpbd && o.backend == cloth_backend::gpu) {
+    throw usage_error{
+        "--integrator xpbd: the gpu path (--backend gpu, the handout's fragment "
+        "shaders) runs the mass-spring integrators semi-implicit and explicit "
+        "only; XPBD runs with --backend cpu, cpu-parallel or gpu-compute"};
+  }
+  if (o.backend != cloth_backend::cpu && integrator != integrator_kind::semi_implicit &&
+      integrator != integrator_kind::explicit_euler && integrator != integrator_kind::xpbd) {
     throw usage_error{"--integrator " + values.integrator + ": the " + values.backend +
-                      " path runs semi-implicit or explicit only; use --backend cpu"};
+                      " path runs semi-implicit, explicit or xpbd only; use --backend cpu"};
+  }
+  if (integrator != integrator_kind::xpbd) {
+    for (const auto* option : {"--xpbd-substeps", "--xpbd-iterations", "--xpbd-damping"}) {
+      if (given(option))
+        throw usage_error{std::string(option) + ": XPBD's; use it with --integrator xpbd"};
+    }
   }
   if (o.backend != cloth_backend::cpu && o.backend != cloth_backend::cpu_parallel) {
     for (const auto* option : {"--tear-strain", "--self-collision"}) {

@@ -62,6 +62,13 @@ bool sweep_within_bounds(const options& o, const sweep_settings& settings) {
     const int base = o.stage == stage_kind::cloth ? o.cloth.grid_size : o.coupled.mass_count;
     rows.assign(settings.stiffnesses.size(), base);
   }
+  // An XPBD step visits every spring `iterations` times in each of its substeps: as many
+  // steps of the other schemes.
+  const dynamics_parameters& d = o.stage == stage_kind::spring    ? o.spring.dynamics
+                                 : o.stage == stage_kind::coupled ? o.coupled.dynamics
+                                                                  : o.cloth.dynamics;
+  const double work_per_step =
+      d.integrator == integrator_kind::xpbd ? double(d.xpbd.substeps) * d.xpbd.iterations : 1.0;
   double steps = 0, particle_steps = 0;
   for (double dt : settings.time_steps) {
     const long per_cell = sweep_steps_per_cell(settings.simulated_time, dt);
@@ -75,7 +82,8 @@ bool sweep_within_bounds(const options& o, const sweep_settings& settings) {
     }
     for (int n : rows) {
       steps += double(per_cell);
-      particle_steps += double(per_cell + cell_setup_steps) * particles_of_row(o.stage, n);
+      particle_steps +=
+          (double(per_cell) * work_per_step + cell_setup_steps) * particles_of_row(o.stage, n);
     }
   }
   const std::size_t cells = settings.time_steps.size() * rows.size();

@@ -335,12 +335,46 @@ const char* cloth_parallel::unavailable_reason() {
 bool cloth_parallel::supports(const cloth_parameters& p, std::string& error) {
   const integrator_kind integrator = p.dynamics.integrator;
   if (integrator != integrator_kind::semi_implicit &&
-      integrator != integrator_kind::explicit_euler) {
+      integrator != integrator_kind::explicit_euler && integrator != integrator_kind::xpbd) {
     error = "integrator " + std::string(integrator_name(integrator)) +
-            ": the cpu-parallel path runs semi-implicit or explicit only";
+            ": the cpu-parallel path runs semi-implicit, explicit or xpbd only";
+    return false;
+  }
+  if (integrator == integrator_kind::xpbd && !xpbd_available()) {
+    error = xpbd_unavailable_reason();
     return false;
   }
   return true;
+}
+
+void cloth_parallel::list_xpbd_constraints() {
+  // The springs that remain, each from its lower end k, colour by colour (a counting sort: the
+  // order within a colour does not change the result, its springs sharing no particle).
+  const int n = n_;
+  std::vector<xpbd_constraint> listed;
+  std::array<std::size_t, cloth_constraint_colours + 1> count{};
+  std::vector<int> colours;
+  for (int kind = 0; kind < kinds; ++kind) {
+    const std::ptrdiff_t far = spring_kinds[kind].du + std::ptrdiff_t(n) * spring_kinds[kind].dv;
+    for (std::size_t k = 0; k < rest_length_[kind].size(); ++k) {
+      const double rest = rest_length_[kind][k];
+      if (rest == 0.0)
+        continue;  // no spring here, or torn
+      const auto b = static_cast<std::uint32_t>(static_cast<std::ptrdiff_t>(k) + far);
+      const spring s = {static_cast<std::uint32_t>(k), b, rest};
+      colours.push_back(cloth_constraint_colour(s, n));
+      ++count[static_cast<std::size_t>(colours.back()) + 1];
+      listed.push_back({s.a, s.b, rest, static_cast<std::uint32_t>(spring_kinds[kind].family)});
+    }
+  }
+  xpbd_colour_start_.assign(count.begin(), count.end());
+  for (int c = 0; c < cloth_constraint_colours; ++c)
+    xpbd_colour_start_[c + 1] += xpbd_colour_start_[c];
+  xpbd_constraints_.resize(listed.size());
+  std::vector<std::size_t> next(xpbd_colour_start_.begin(), xpbd_colour_start_.end() - 1);
+  for (std::size_t i = 0; i < listed.size(); ++i)
+    xpbd_constraints_[next[static_cast<std::size_t>(colours[i])]++] = listed[i];
+  xpbd_constraints_listed_ = true;
 }
 
 int cloth_parallel::threads() const {
@@ -390,6 +424,8 @@ void cloth_parallel::load(const spring_mesh& cloth) {
   scratch_.assign(static_cast<std::size_t>(std::max(threads(), 1)),
                   std::vector<double>(ring_rows * row_stride(n) + 6 * count / n, 0.0));
   contact_state_ = particles;
+  xpbd_state_ = particles;
+  xpbd_constraints_listed_ = false;
 }
 
 void cloth_parallel::read_state(spring_mesh& cloth) const {
@@ -419,6 +455,21 @@ void cloth_parallel::step(const cloth_parameters& p) {
   check_effective(p, "cloth_parallel::step");
   if (n_ == 0)
     throw std::logic_error("cloth_parallel::step called before load");
+  if (p.dynamics.integrator == integrator_kind::xpbd) {
+    step_xpbd(p);
+  } else {
+    step_mass_spring(p);
+  }
+  // After the contacts: self-collision, then tearing (docs/model.md).
+  if (p.self_collision_thickness > 0.0)
+    apply_self_collision(self_collision_distance(p));
+  if (p.tear_strain > 0.0) {
+    tear_springs(p.tear_strain);
+    xpbd_constraints_listed_ = false;  // springs may have torn
+  }
+}
+
+void cloth_parallel::step_mass_spring(const cloth_parameters& p) {
   const int n = n_;
 
   step_constants c{};
@@ -527,12 +578,6 @@ void cloth_parallel::step(const cloth_parameters& p) {
     }
   }
   current_ = 1 - current_;
-
-  // After the contacts: self-collision, then tearing (docs/model.md).
-  if (p.self_collision_thickness > 0.0)
-    apply_self_collision(self_collision_distance(p));
-  if (p.tear_strain > 0.0)
-    tear_springs(p.tear_strain);
 }
 
 void cloth_parallel::apply_self_collision(double thickness) {

@@ -20,7 +20,11 @@
 // A thread starts two rows above its band, so that it has the springs of those rows without
 // waiting for its neighbour (it computes them again: the same numbers). Then, after the sweep,
 // self-collision (the readable path's self_collision, on a copy of the state in its layout) and
-// tearing. The stability lab's other integrators are the readable path's alone (supports()).
+// tearing.
+// With --integrator xpbd the step is XPBD's (xpbd.hpp; cloth_parallel_xpbd.cpp) instead of the
+// sweep: the readable solver's arithmetic on its layout, each colour's constraints, which share
+// no particle, solved by the threads at once, so that the two paths agree bitwise. The stability
+// lab's other integrators are the readable path's alone (supports()).
 #pragma once
 
 #include <array>
@@ -31,6 +35,7 @@
 #include "core/parameters.hpp"
 #include "core/particle_system.hpp"
 #include "core/spring_mesh.hpp"
+#include "core/xpbd.hpp"
 
 namespace clothlab {
 
@@ -74,6 +79,12 @@ class cloth_parallel {
   bool diverged(double speed_bound) const;  // a position or velocity not finite, or too fast
   void apply_self_collision(double thickness);
   void tear_springs(double strain);
+  // The mass-spring step: the sweep over the rows above, into the other buffer, then swapped.
+  void step_mass_spring(const cloth_parameters& p);
+  // XPBD (cloth_parallel_xpbd.cpp): one step, from the state in x_, y_, z_ back into them.
+  void step_xpbd(const cloth_parameters& p);
+  // xpbd_constraints_ and xpbd_colour_start_ from the springs left (rest_length_ > 0).
+  void list_xpbd_constraints();
 
   int threads_ = 0;
   int n_ = 0;
@@ -94,6 +105,14 @@ class cloth_parallel {
   // Self-collision runs the readable path's code, on its layout (3k + c).
   particle_system contact_state_;
   self_collision self_collision_;
+  // XPBD: its constraints colour by colour (colour c from xpbd_colour_start_[c] to [c + 1]),
+  // listed again when springs tear; the state in the readable layout while it steps (3k + c), the
+  // multipliers, the positions at the start of the substep, F_ext and the wind's normals.
+  std::vector<xpbd_constraint> xpbd_constraints_;
+  std::vector<std::size_t> xpbd_colour_start_;
+  bool xpbd_constraints_listed_ = false;
+  particle_system xpbd_state_;
+  std::vector<double> xpbd_multiplier_, xpbd_previous_, xpbd_external_, xpbd_normals_;
 };
 
 }  // namespace clothlab

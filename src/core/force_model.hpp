@@ -1,6 +1,7 @@
 // The forces of a stage seen by an integrator: a function of the positions that the schemes with
-// several stages per step (Verlet, RK4) evaluate at intermediate states, and the spring data that
-// the implicit scheme differentiates.
+// several stages per step (Verlet, RK4) evaluate at intermediate states, the spring data that
+// the implicit scheme differentiates, and what XPBD needs: the forces that are not springs and
+// the order in which to visit the springs.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +26,13 @@ struct force_model {
   // force <- F(position): the stage's own compute_force at the given positions (the cloth's
   // wind with the normals of THOSE positions).
   std::function<void(std::span<const double> position, std::span<double> force)> compute;
+  // force <- the forces that are not springs at the given positions (the cloth's wind, the mouse
+  // drag; not gravity): XPBD's, whose springs are constraints (xpbd.hpp). Empty: none.
+  std::function<void(std::span<const double> position, std::span<double> force)> external = {};
+  // XPBD's colour of a spring: the springs are visited by increasing colour, and two springs of
+  // one colour share no particle (the cloth's cloth_constraint_colour). Empty: every spring has
+  // colour 0 and they are visited in the order of their sets (a chain's, from the fixed end).
+  std::function<int(const spring&)> colour = {};
 };
 
 // force <- F(position), by forces.compute.

@@ -21,6 +21,9 @@ void time_integrator::step(const dynamics_parameters& dynamics, const force_mode
     case integrator_kind::implicit_euler:
       implicit_.step(dynamics, forces, particles);
       break;
+    case integrator_kind::xpbd:
+      xpbd_.step(dynamics, forces, particles);
+      break;
   }
 }
 

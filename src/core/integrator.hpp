@@ -13,6 +13,8 @@
 //                  this is solved in closed form).  Order 2, dt < 2/omega.
 //   rk4:           classical Runge-Kutta on (p, v).  Order 4, dt < 2 sqrt(2)/omega.
 //   implicit:      backward Euler linearised once per step.  Order 1, every dt.
+//   xpbd:          the springs as compliant distance constraints, in substeps (xpbd.hpp).
+//                  Order 1, every dt.
 // The first two are model.md's and multiply v by (1 - mu dt); the other three apply the damping
 // as the force -mu m v (the same to first order in dt). stability.hpp gives every limit exactly.
 #pragma once
@@ -24,6 +26,7 @@
 #include "core/implicit_euler.hpp"
 #include "core/parameters.hpp"
 #include "core/particle_system.hpp"
+#include "core/xpbd.hpp"
 
 namespace clothlab {
 
@@ -32,9 +35,10 @@ namespace clothlab {
 class time_integrator {
  public:
   // One step of length dynamics.time_step by dynamics.integrator, one of the stability lab's
-  // three schemes (verlet, rk4, implicit); throws std::invalid_argument for the two Euler
+  // four schemes (verlet, rk4, implicit, xpbd); throws std::invalid_argument for the two Euler
   // schemes, which are each stage's own apply_force. particles.force must hold F(p) at the
-  // start of the step (the stage's compute_force); it is left unchanged.
+  // start of the step (the stage's compute_force; xpbd reads forces.external instead); it is
+  // left unchanged.
   void step(const dynamics_parameters& dynamics, const force_model& forces,
             particle_system& particles);
 
@@ -60,6 +64,7 @@ class time_integrator {
   std::vector<double> position_increment_;  // RK4: sum of the weighted slopes of p
   std::vector<double> velocity_increment_;  // RK4: sum of the weighted slopes of v
   implicit_euler_solver implicit_;
+  xpbd_solver xpbd_;
 };
 
 }  // namespace clothlab

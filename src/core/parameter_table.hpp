@@ -106,10 +106,11 @@ inline dynamics_parameters& dynamics_of(const stage_structs& s, stage_kind stage
                                         : s.cloth.dynamics;
 }
 
-// A field of every stage's dynamics_parameters.
-template <auto member>
+// A field of every stage's dynamics_parameters (a path of members: &dynamics_parameters::xpbd,
+// &xpbd_parameters::substeps).
+template <auto... path>
 field_ref dynamics(const stage_structs& s, stage_kind stage) {
-  return at<member>(dynamics_of(s, stage));
+  return at<path...>(dynamics_of(s, stage));
 }
 // A field of the single spring and one of the chain.
 template <auto spring_member, auto chain_member>
@@ -171,8 +172,9 @@ inline constexpr std::array parameter_table = {
         .spring_stages_slider = slider_range{0.0, 1.0 / spring_stages_slider_max_time_step},
         .help = "Damping rate mu",
         .doc = "damping rate μ in 1/s, {range} [{default}]; μ dt must be at most 1 with the two "
-               "Euler integrators, which multiply the velocity by (1 - μ dt) (the other three "
-               "apply the damping as a force)",
+               "Euler integrators, which multiply the velocity by (1 - μ dt), and μ h with "
+               "`xpbd`, which multiplies it by (1 - μ h) every substep h (`verlet`, `rk4` and "
+               "`implicit` apply the damping as a force)",
     },
     parameter{
         .option = "--mass",
@@ -198,6 +200,45 @@ inline constexpr std::array parameter_table = {
         .slider = {0.0, 30.0},
         .help = "Gravity g0 along -z",
         .doc = "magnitude of gravity along -z, {range} [{default}]",
+    },
+    parameter{
+        .option = "--xpbd-substeps",
+        .value_name = "N",
+        .scope = parameter_scope::dynamics,
+        .field = parameter_fields::dynamics<&dynamics_parameters::xpbd, &xpbd_parameters::substeps>,
+        .low = 1,
+        .high = 1000,
+        .slider = {1, 100},
+        .help = "XPBD: substeps per step",
+        .doc = "`--integrator xpbd`: substeps per step, each of h = dt / N, {range} [{default}] "
+               "(the window's slider goes to {slider_high})",
+    },
+    parameter{
+        .option = "--xpbd-iterations",
+        .value_name = "N",
+        .scope = parameter_scope::dynamics,
+        .field =
+            parameter_fields::dynamics<&dynamics_parameters::xpbd, &xpbd_parameters::iterations>,
+        .low = 1,
+        .high = 1000,
+        .slider = {1, 50},
+        .help = "XPBD: sweeps over the constraints per substep",
+        .doc = "`--integrator xpbd`: Gauss-Seidel sweeps over every spring's constraint per "
+               "substep, {range} [{default}] (the window's slider goes to {slider_high})",
+    },
+    parameter{
+        .option = "--xpbd-damping",
+        .value_name = "BETA",
+        .unit = "N s/m",
+        .scope = parameter_scope::dynamics,
+        .field = parameter_fields::dynamics<&dynamics_parameters::xpbd,
+                                            &xpbd_parameters::constraint_damping>,
+        .low = 0.0,
+        .high = 1e9,
+        .slider = {0.0, 200.0},
+        .help = "XPBD: damping beta along each spring",
+        .doc = "`--integrator xpbd`: the damping β of every spring's constraint (the XPBD "
+               "paper's: a dashpot of β N s/m along the spring, beside μ), {range} [{default}]",
     },
     parameter{
         .option = "--K",

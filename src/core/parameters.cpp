@@ -31,6 +31,8 @@ std::string_view integrator_name(integrator_kind kind) {
       return "rk4";
     case integrator_kind::implicit_euler:
       return "implicit";
+    case integrator_kind::xpbd:
+      return "xpbd";
   }
   return "?";
 }

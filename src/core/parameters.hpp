@@ -23,17 +23,26 @@ enum class integrator_kind {
   explicit_euler,   // p <- p + dt v and v <- (1 - mu dt) v + dt a(p), both from the old state
   velocity_verlet,  // half kick, drift, half kick: second order, symplectic without damping
   runge_kutta_4,    // classical fourth-order Runge-Kutta on (p, v)
-  implicit_euler    // backward Euler linearised once per step (Baraff and Witkin 1998)
+  implicit_euler,   // backward Euler linearised once per step (Baraff and Witkin 1998)
+  xpbd  // each spring a distance constraint of compliance 1/K (Macklin et al. 2016): xpbd.hpp
 };
-inline constexpr std::array<integrator_kind, 5> all_integrators = {
-    integrator_kind::semi_implicit, integrator_kind::explicit_euler,
+inline constexpr std::array<integrator_kind, 6> all_integrators = {
+    integrator_kind::semi_implicit,   integrator_kind::explicit_euler,
     integrator_kind::velocity_verlet, integrator_kind::runge_kutta_4,
-    integrator_kind::implicit_euler};
+    integrator_kind::implicit_euler,  integrator_kind::xpbd};
 
-// "semi-implicit", "explicit", "verlet", "rk4", "implicit" (the command line's names).
+// "semi-implicit", "explicit", "verlet", "rk4", "implicit", "xpbd" (the command line's names).
 std::string_view integrator_name(integrator_kind kind);
 // The inverse of integrator_name; nullopt for an unknown name.
 std::optional<integrator_kind> parse_integrator(std::string_view name);
+
+// XPBD's own numbers (docs/model.md, "XPBD"): a step of dt is `substeps` substeps of
+// h = dt / substeps, each `iterations` Gauss-Seidel sweeps over the springs' constraints.
+struct xpbd_parameters {
+  int substeps = 10;                // per step: h = dt / substeps
+  int iterations = 1;               // sweeps over every constraint per substep
+  double constraint_damping = 0.0;  // beta, N s/m: the paper's damping along each spring
+};
 
 // What every stage shares: time step, damping, mass, gravity and the integrator.
 struct dynamics_parameters {
@@ -42,6 +51,7 @@ struct dynamics_parameters {
   double mass = 1.0;         // m, kg, of every moving particle
   double gravity = 9.8;      // g0, m/s^2: gravity is (0, 0, -g0)
   integrator_kind integrator = integrator_kind::semi_implicit;
+  xpbd_parameters xpbd = {};  // read by the xpbd integrator only
 };
 
 // K_d, N/m: the default stiffness of the mouse drag's spring, on every stage.

@@ -44,7 +44,12 @@ void single_spring::apply_force() {
     const auto forces_at = [this](std::span<const double> position, std::span<double> force) {
       compute_force(position, force);
     };
-    integrator_.step(d, {sets, forces_at}, particles_);
+    // XPBD's forces that are not springs: the mouse drag (its spring is a constraint).
+    const auto drag_at = [this](std::span<const double> position, std::span<double> force) {
+      std::fill(force.begin(), force.end(), 0.0);
+      add_mass_drag_force(parameters.drag, particles_.is_fixed, position, force);
+    };
+    integrator_.step(d, {sets, forces_at, drag_at}, particles_);
     return;
   }
   // Numerical integration: the handout's code of section 2 (question 3), for the mass p1

@@ -56,10 +56,13 @@ class spring_mesh {
   // with it: the window (which wraps each phase in a timer: `phase`), the headless run, the
   // benchmarks. The normals, the last phase of a drawn frame, are the drawing's: computed once
   // after the frame's steps from the final positions (and by compute_force itself, at the
-  // start of every step, when the wind needs them).
+  // start of every step, when the wind needs them). XPBD has no spring forces: its springs are
+  // constraints, solved with the wind and the drag in its integration (xpbd.hpp).
   template <class Wrap = run_phase>
   void step(Wrap&& phase = {}) {
     phase(step_phase::forces, [this] {
+      if (parameters.dynamics.integrator == integrator_kind::xpbd)
+        return;
       compute_force();
       add_drag_force();
     });
@@ -74,7 +77,7 @@ class spring_mesh {
   void add_drag_force();
   // apply_force for the handout's Euler (semi-implicit); for equation 6 taken literally
   // (explicit), apply_force's speeds with each vertex moved by its speed at the start of the
-  // step; the stability lab's Verlet, RK4 and implicit Euler (integrator.hpp) otherwise.
+  // step; the stability lab's Verlet, RK4, implicit Euler and XPBD (integrator.hpp) otherwise.
   void integrate_step();
   // The constraints after the integration, in the order of docs/model.md: the sphere, the
   // ground (question 9), self-collision, tearing (each off unless its parameter says so).

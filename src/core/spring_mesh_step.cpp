@@ -6,6 +6,7 @@
 
 #include "core/contacts.hpp"
 #include "core/spring_mesh.hpp"
+#include "core/xpbd.hpp"
 
 namespace clothlab {
 
@@ -65,7 +66,8 @@ void spring_mesh::integrate_step() {
     apply_force();  // question 6
     return;
   }
-  const dynamics_parameters d = effective_parameters().dynamics;  // the mass at this N
+  const cloth_parameters at_this_n = effective_parameters();  // the mass at this N
+  const dynamics_parameters& d = at_this_n.dynamics;
   if (scheme == integrator_kind::explicit_euler) {
     // Equation 6 taken literally (model.md): the speeds of apply_force (question 6), and every
     // vertex that it moves moved by its speed at the start of the step, p + dt v(t).
@@ -81,10 +83,18 @@ void spring_mesh::integrate_step() {
     return;
   }
   const std::array<spring_set, 3> sets = spring_sets();
-  const force_model forces = {sets,
-                              [this](std::span<const double> position, std::span<double> force) {
-                                forces_at(position, force);
-                              }};
+  force_model forces = {sets, [this](std::span<const double> position, std::span<double> force) {
+                          forces_at(position, force);
+                        }};
+  if (scheme == integrator_kind::xpbd) {
+    // The wind and the drag move the particles; the springs are constraints, visited colour by
+    // colour (xpbd.hpp).
+    forces.external = [this, &at_this_n](std::span<const double> position,
+                                         std::span<double> force) {
+      xpbd_cloth_external_force(at_this_n, position, particles_.is_fixed, normals_, force);
+    };
+    forces.colour = [n = grid_size_](const spring& s) { return cloth_constraint_colour(s, n); };
+  }
   integrator_.step(d, forces, particles_);
 }
 

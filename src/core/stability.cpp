@@ -46,6 +46,15 @@ std::array<double, 2> scalar_step(integrator_kind integrator, double omega, doub
       const double v1 = v + dv;
       return {x + dt * v1, v1};
     }
+    case integrator_kind::xpbd: {
+      // One substep of length dt (xpbd.hpp) on the spring of stiffness m omega^2 as a
+      // constraint: the predicted x~ = x + dt (1 - mu dt) v, then C = x with alpha~ = 1 / (m
+      // omega^2 dt^2) and w = 1/m: x' = x~ alpha~ / (w + alpha~) = x~ / (1 + (omega dt)^2), and
+      // v' = (x' - x) / dt. A step of n substeps is this map with dt / n, n times.
+      const double x_predicted = x + dt * (1 - damping * dt) * v;
+      const double x1 = x_predicted / (1 + dt * dt * w2);
+      return {x1, (x1 - x) / dt};
+    }
   }
   return {NAN, NAN};
 }
@@ -131,6 +140,7 @@ double time_step_limit(integrator_kind integrator, double omega, double damping)
         return omega == 0.0 ? infinity : 2 * std::sqrt(2.0) / omega;
       return first_unstable_time_step(integrator, omega, damping);
     case integrator_kind::implicit_euler:
+    case integrator_kind::xpbd:
       return infinity;
   }
   return 0.0;
@@ -170,7 +180,19 @@ stability_estimate estimate_stability(const particle_system& particles,
                                                         : dt / estimate.time_step_limit;
   char line[256];
   const std::string name(integrator_name(dynamics.integrator));
-  if (std::isinf(estimate.time_step_limit)) {
+  if (dynamics.integrator == integrator_kind::xpbd) {
+    // What XPBD pays instead of a limit: over a substep h, (omega h)^2 = w / alpha~ compares the
+    // constraint's correction with its compliance; above 1, a few sweeps leave the springs
+    // softer than K (docs/stability.md).
+    const double h = dt / std::max(dynamics.xpbd.substeps, 1);
+    const double stiffness_ratio = std::pow(estimate.omega_max * h, 2);
+    std::snprintf(line, sizeof line,
+                  "%s: no step-size limit (omega_max <= %.4g rad/s); substep h = %s, "
+                  "(omega h)^2 = %.3g%s",
+                  name.c_str(), estimate.omega_max, format_seconds(h).c_str(), stiffness_ratio,
+                  stiffness_ratio > 1 ? ": softer than K unless more substeps or iterations"
+                                      : ": the springs reach K");
+  } else if (std::isinf(estimate.time_step_limit)) {
     std::snprintf(line, sizeof line,
                   "%s: no step-size limit (omega_max <= %.4g rad/s, dt omega = %.3g)", name.c_str(),
                   estimate.omega_max, dt * estimate.omega_max);

@@ -36,6 +36,8 @@
 //                  meets the imaginary axis at |omega dt| = 2 sqrt 2 (2.785 is where it meets
 //                  the negative real axis, the limit for pure damping); with damping, numerical
 //   implicit       none: rho(A) < 1 for every dt > 0 (it damps every mode, the stiffest most)
+//   xpbd           none: one substep of a linear spring is backward Euler after a damped
+//                  prediction (amplification_factor takes dt as the substep)
 #pragma once
 
 #include <span>
@@ -51,7 +53,8 @@
 namespace clothlab {
 
 // rho(A): the growth of a mode of angular frequency omega (rad/s) per step of length dt (s)
-// with damping rate mu (1/s), for the scheme as implemented (integrator.cpp).
+// with damping rate mu (1/s), for the scheme as implemented (integrator.cpp; for xpbd, per
+// substep of length dt, xpbd.hpp).
 double amplification_factor(integrator_kind integrator, double omega, double damping, double dt);
 
 // The largest stable dt (s) for that mode: infinity when every dt is stable, 0 when none is

@@ -6,6 +6,7 @@
 
 #include "core/stability.hpp"
 #include "core/wall_clock.hpp"
+#include "core/xpbd.hpp"
 #include "gl/gl_state_guard.hpp"
 #include "gl/shader.hpp"  // shader_path
 
@@ -27,8 +28,26 @@ void cloth_paths::check_compute_offered() {
                            shader_path("gpu_compute_step.comp").string() + " is missing)";
 }
 
+bool cloth_paths::runs(cloth_backend target, const cloth_parameters& p, std::string& why) {
+  if (p.dynamics.integrator == integrator_kind::xpbd && !xpbd_available()) {
+    why = xpbd_unavailable_reason();
+    return false;
+  }
+  switch (target) {
+    case cloth_backend::cpu:
+      return true;
+    case cloth_backend::cpu_parallel:
+      return cloth_parallel::supports(p, why);
+    case cloth_backend::gpu:
+      return gpu_cloth::supports(p, why);
+    case cloth_backend::gpu_compute:
+      return gpu_cloth_compute::supports(p, why);
+  }
+  return false;
+}
+
 bool cloth_paths::gpu_can_run(cloth_backend target, std::string& why) const {
-  if (!gpu_cloth::supports(cloth.parameters, why))
+  if (!runs(target, cloth.parameters, why))
     return false;
   if (target == cloth_backend::gpu_compute)
     return compute_offered(why);

@@ -59,6 +59,9 @@ class cloth_paths final : public cpu_cloth_paths {
     why = compute_unavailable_;
     return compute_unavailable_.empty();
   }
+  // True when `target` runs the cloth as p sets it up (its integrator, self-collision);
+  // otherwise false with the reason. The CPU path runs everything this copy has.
+  static bool runs(cloth_backend target, const cloth_parameters& p, std::string& why);
   // True when the cloth as now set up can run on that GPU path; otherwise false with the reason
   // (the integrator, tearing or self-collision, the grid size, or a context older than 4.3).
   bool gpu_can_run(cloth_backend target, std::string& why) const;

@@ -125,6 +125,12 @@ bool gpu_cloth::supports_integrator(integrator_kind integrator, std::string& err
       integrator == integrator_kind::explicit_euler) {
     return true;
   }
+  if (integrator == integrator_kind::xpbd) {
+    error =
+        "integrator xpbd: the fragment GPU path runs the mass-spring integrators "
+        "(semi-implicit and explicit) only; XPBD runs on GPU compute";
+    return false;
+  }
   error = "integrator " + std::string(integrator_name(integrator)) +
           ": the GPU path runs semi-implicit or explicit only";
   return false;

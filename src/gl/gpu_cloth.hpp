@@ -43,8 +43,9 @@ class gpu_cloth {
   // GL_MAX_VIEWPORT_DIMS); otherwise false with error naming N and the limit.
   static bool check_grid_size(int grid_size, std::string& error);
 
-  // The GPU path integrates with semi-implicit and explicit Euler (model.md) only. True when it
-  // can run p's integrator; otherwise false with error naming the integrator.
+  // The fragment path integrates with semi-implicit and explicit Euler (model.md) only, the
+  // mass-spring integrators of the handout (XPBD runs on the compute path). True when it can run
+  // p's integrator; otherwise false with error naming the integrator.
   static bool supports_integrator(integrator_kind integrator, std::string& error);
   // Everything of p that the GPU paths run: their integrators, the drag, the sphere and
   // tearing; not self-collision (false, with error naming the option).

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "core/xpbd.hpp"
 #include "gl/gl_state_guard.hpp"
 #include "gl/gpu_cloth.hpp"
 
@@ -18,6 +19,9 @@ bool gpu_cloth_compute::available(std::string& error) {
       "the compute-shader GPU path needs OpenGL 4.3 compute shaders, which WebGL2 (this "
       "browser's GL) does not have";
   return false;
+}
+bool gpu_cloth_compute::supports(const cloth_parameters&, std::string& error) {
+  return available(error);
 }
 gpu_cloth_compute::~gpu_cloth_compute() = default;
 bool gpu_cloth_compute::load(const spring_mesh&, std::string& error) {
@@ -68,6 +72,9 @@ void gpu_cloth_compute::release() {
   glDeleteBuffers(2, velocity_.data());
   glDeleteBuffers(1, &normal_);
   glDeleteBuffers(1, &spring_mask_);
+  const GLuint xpbd_buffers[] = {xpbd_displacement_, xpbd_multiplier_, xpbd_external_force_};
+  glDeleteBuffers(3, xpbd_buffers);
+  xpbd_displacement_ = xpbd_multiplier_ = xpbd_external_force_ = 0;
   if (diverged_ != 0)
     glDeleteBuffers(1, &diverged_);
   diverged_ = 0;
@@ -86,6 +93,17 @@ bool gpu_cloth_compute::available(std::string& error) {
   error = "the compute-shader path needs OpenGL 4.3; this context has " + std::to_string(major) +
           "." + std::to_string(minor);
   return false;
+}
+
+bool gpu_cloth_compute::supports(const cloth_parameters& p, std::string& error) {
+  if (p.dynamics.integrator != integrator_kind::xpbd)
+    return gpu_cloth::supports(p, error);
+  if (p.self_collision_thickness > 0.0) {
+    error = "self-collision (--self-collision " + std::to_string(p.self_collision_thickness) +
+            "): the GPU paths have no self-collision; run the cloth on the CPU";
+    return false;
+  }
+  return true;
 }
 
 bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
@@ -107,6 +125,19 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
       return false;
     tear_uniform_.forget();
   }
+  const std::array<std::pair<shader_program*, const char*>, 3> xpbd_passes = {{
+      {&xpbd_predict_program_, "gpu_xpbd_predict.comp"},
+      {&xpbd_solve_program_, "gpu_xpbd_solve.comp"},
+      {&xpbd_velocity_program_, "gpu_xpbd_velocity.comp"},
+  }};
+  for (std::size_t pass = 0; pass < xpbd_passes.size(); ++pass) {
+    auto [program, file] = xpbd_passes[pass];
+    if (program->id() != 0)
+      continue;
+    if (!program->load_compute(file, error))
+      return false;
+    xpbd_uniforms_[pass].locate(*program);
+  }
   rest_length_ = family_rest_lengths(cloth);
   const particle_system& particles = cloth.particles();
   const std::size_t count = particles.size();
@@ -123,6 +154,9 @@ bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
     velocity_[copy] = create_buffer(velocities);
   }
   normal_ = create_buffer(std::vector<float>(4 * count, 0.0f));
+  xpbd_displacement_ = create_buffer(std::vector<float>(4 * count, 0.0f));
+  xpbd_multiplier_ = create_buffer(std::vector<float>(6 * count, 0.0f));
+  xpbd_external_force_ = create_buffer(std::vector<float>(4 * count, 0.0f));
   std::vector<std::uint32_t> masks;
   spring_masks(cloth, masks);  // the springs the CPU cloth still has
   spring_mask_ = create_buffer(masks);
@@ -158,7 +192,7 @@ int gpu_cloth_compute::run(const cloth_parameters& p, int count, double speed_bo
   if (!is_loaded())
     throw std::logic_error("gpu_cloth_compute::run called before a successful load");
   check_effective(p, "gpu_cloth_compute::run");
-  if (std::string error; !gpu_cloth::supports(p, error))
+  if (std::string error; !supports(p, error))
     throw std::invalid_argument("gpu_cloth_compute::run: " + error);
   if (count < 1)
     return 0;
@@ -188,13 +222,34 @@ int gpu_cloth_compute::run(const cloth_parameters& p, int count, double speed_bo
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, diverged_);
   }
-  const bool wind = p.wind_strength != 0.0;  // the only force that needs the normals
-  const bool tear = p.tear_strain > 0.0;
-  if (tear)
+  if (p.tear_strain > 0.0)
     tear_uniform_.set(tear_program_, p.tear_strain, rest_length_);
   // Bound once per batch: the normals and the spring mask (updated in place).
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, spring_mask_);
+  if (p.dynamics.integrator == integrator_kind::xpbd)
+    run_xpbd(p, count, check);
+  else
+    run_mass_spring(p, count, check);
+  if (!check)
+    return 0;
+  std::vector<std::uint32_t>& counts = diverged_counts_;
+  counts.resize(static_cast<std::size_t>(count));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, diverged_);
+  glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(counts.size() * 4),
+                     counts.data());
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  for (int s = 0; s < count; ++s) {
+    if (counts[static_cast<std::size_t>(s)] != 0)
+      return s + 1;
+  }
+  return 0;
+}
+
+void gpu_cloth_compute::run_mass_spring(const cloth_parameters& p, int count, bool check) {
+  const bool wind = p.wind_strength != 0.0;  // the only force that needs the normals
+  const bool tear = p.tear_strain > 0.0;
   // Only one dispatch per step without wind or tearing: its program stays in use.
   const bool one_pass = !wind && !tear;
   step_program_.use();
@@ -225,20 +280,78 @@ int gpu_cloth_compute::run(const cloth_parameters& p, int count, double speed_bo
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
   }
-  if (!check)
-    return 0;
-  std::vector<std::uint32_t>& counts = diverged_counts_;
-  counts.resize(static_cast<std::size_t>(count));
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glBindBuffer(GL_SHADER_STORAGE_BUFFER, diverged_);
-  glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(counts.size() * 4),
-                     counts.data());
-  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-  for (int s = 0; s < count; ++s) {
-    if (counts[static_cast<std::size_t>(s)] != 0)
-      return s + 1;
+}
+
+void gpu_cloth_compute::run_xpbd(const cloth_parameters& p, int count, bool check) {
+  const xpbd_parameters& settings = p.dynamics.xpbd;
+  const double h = p.dynamics.time_step / settings.substeps;
+  const auto f = [](double x) { return static_cast<float>(x); };
+  // alpha~ and gamma of each family over h, computed as the CPU computes them (xpbd.hpp).
+  std::array<float, 3> alpha_tilde{}, gamma{};
+  const double stiffness[3] = {p.structural_stiffness, p.shear_stiffness, p.bending_stiffness};
+  for (int family = 0; family < 3; ++family) {
+    const xpbd_compliance c = compliance_of(stiffness[family], h, settings.constraint_damping);
+    alpha_tilde[family] = f(c.alpha_tilde);
+    gamma[family] = f(c.gamma);
   }
-  return 0;
+  shader_program* const programs[3] = {&xpbd_predict_program_, &xpbd_solve_program_,
+                                       &xpbd_velocity_program_};
+  for (int pass = 0; pass < 3; ++pass) {
+    programs[pass]->use();
+    xpbd_uniforms_[pass].set(p, grid_size_, rest_length_);
+  }
+  xpbd_predict_program_.use();
+  glUniform1f(xpbd_predict_program_.uniform("substep"), f(h));
+  xpbd_solve_program_.use();
+  glUniform3fv(xpbd_solve_program_.uniform("alpha_tilde"), 1, alpha_tilde.data());
+  glUniform3fv(xpbd_solve_program_.uniform("gamma"), 1, gamma.data());
+  const GLint colour_at = xpbd_solve_program_.uniform("colour");
+  xpbd_velocity_program_.use();
+  glUniform1f(xpbd_velocity_program_.uniform("substep"), f(h));
+  glUniform1f(xpbd_velocity_program_.uniform("speed_bound"), check ? sent_speed_bound_ : 0.0f);
+  const GLint first_at = xpbd_predict_program_.uniform("first_substep");
+  const GLint last_at = xpbd_velocity_program_.uniform("last_substep");
+  const GLint step_at = xpbd_velocity_program_.uniform("step_index");
+  // In place: the current copy of the positions and velocities, and XPBD's own buffers.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, xpbd_displacement_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, xpbd_multiplier_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, xpbd_external_force_);
+  const GLuint n_groups = groups(grid_size_);
+  const bool wind = p.wind_strength != 0.0;
+  const bool tear = p.tear_strain > 0.0;
+  for (int s = 0; s < count; ++s) {
+    if (wind && !normals_current_)
+      compute_normals();  // F_ext's normals, from the start of the step
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, velocity_[read_]);
+    for (int substep = 0; substep < settings.substeps; ++substep) {
+      xpbd_predict_program_.use();
+      glUniform1i(first_at, substep == 0);
+      glDispatchCompute(n_groups, n_groups, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      xpbd_solve_program_.use();
+      for (int iteration = 0; iteration < settings.iterations; ++iteration) {
+        for (int colour = 0; colour < cloth_constraint_colours; ++colour) {
+          glUniform1i(colour_at, colour);
+          glDispatchCompute(n_groups, n_groups, 1);
+          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+      }
+      xpbd_velocity_program_.use();
+      glUniform1i(last_at, substep + 1 == settings.substeps);
+      if (check)
+        glUniform1i(step_at, s);
+      glDispatchCompute(n_groups, n_groups, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    normals_current_ = false;
+    if (tear) {  // last in the step, from the new positions, into the mask
+      tear_program_.use();
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
+      glDispatchCompute(n_groups, n_groups, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+  }
 }
 
 void gpu_cloth_compute::read_state(spring_mesh& cloth) const {

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,6 +58,17 @@ void show_stability_map(scene& the_scene) {
   const std::vector<sweep_cell> cells = map.cells();
   if (cells.size() < static_cast<std::size_t>(stability_map::columns * stability_map::rows))
     return;
+  if (map.just_ended()) {  // on standard output, once: the map's result in one line
+    const auto computed =
+        std::count_if(cells.begin(), cells.end(), [](const sweep_cell& c) { return c.computed; });
+    const auto diverged =
+        std::count_if(cells.begin(), cells.end(), [](const sweep_cell& c) { return c.diverged; });
+    std::printf("clothlab-window: stability map (%s, %s): %ld of %zu cells run, %ld diverged\n",
+                std::string(stage_name(map.stage())).c_str(),
+                std::string(integrator_name(cells.front().integrator)).c_str(),
+                static_cast<long>(computed), cells.size(), static_cast<long>(diverged));
+    std::fflush(stdout);
+  }
   // Axes: K (N/m) of every other row on the left, dt (s) of every third column below.
   const float text_height = ImGui::GetTextLineHeight();
   float label_width = ImGui::CalcTextSize("K (N/m)").x;
@@ -111,15 +124,22 @@ void show_stability_map(scene& the_scene) {
   ImGui::Dummy({ImGui::GetContentRegionAvail().x,
                 text_height * 2 + 5.0f + cell_height * stability_map::rows});
   ImGui::PushTextWrapPos(0.0f);
+  const std::string integrator(integrator_name(cells.front().integrator));
+  // Implicit Euler and XPBD have no limit: their map is centred on the current dt.
+  const bool limited = std::isfinite(cells[cells.size() / 2].time_step_limit);
   ImGui::TextDisabled(
-      "dt across (x %.3g per cell, centred on the limit of the current K), K up (x 10^1/4), "
-      "the outlined cell is now; green stable, red diverged, dot: unstable in theory",
-      map.column_factor());
+      "%s: dt across (x %.3g per cell, centred on %s), K up (x 10^1/4), the outlined cell is "
+      "now; green stable, red diverged, dot: unstable in theory",
+      integrator.c_str(), map.column_factor(),
+      limited ? "the limit of the current K" : "the current dt: no limit");
   ImGui::PopTextWrapPos();
   if (hovered != nullptr) {
     ImGui::BeginTooltip();
     ImGui::Text("dt = %.4g s, K = %.4g N/m", hovered->time_step, hovered->stiffness);
-    ImGui::Text("theory: stable while dt < %.4g s", hovered->time_step_limit);
+    if (std::isfinite(hovered->time_step_limit))
+      ImGui::Text("theory: stable while dt < %.4g s", hovered->time_step_limit);
+    else
+      ImGui::Text("theory: stable at every dt (%s)", integrator.c_str());
     if (hovered->computed) {
       ImGui::Text(hovered->diverged ? "run: diverged at step %ld" : "run: stable for %ld steps",
                   hovered->step);

@@ -95,13 +95,24 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
   }};
   std::string compute_why;
   const bool compute = the_scene.compute_offered(compute_why);
+  // The fragment path is the handout's mass-spring path: with XPBD chosen it is greyed, the
+  // reason in its tooltip.
+  std::string fragment_why;
+  const bool fragment_runs_integrator =
+      the_scene.cloth_stage.parameters.dynamics.integrator != integrator_kind::xpbd ||
+      cloth_paths::runs(cloth_backend::gpu, the_scene.cloth_stage.parameters, fragment_why);
   for (const auto& [path, label] : paths) {
     if (path != cloth_backend::cpu)
       ImGui::SameLine();
-    ImGui::BeginDisabled(path == cloth_backend::gpu_compute && !compute);
+    const bool greyed = (path == cloth_backend::gpu_compute && !compute) ||
+                        (path == cloth_backend::gpu && !fragment_runs_integrator);
+    ImGui::BeginDisabled(greyed);
     if (ImGui::RadioButton(label, backend == path) && backend != path)
       actions.select_cloth_backend = path;
     ImGui::EndDisabled();
+    if (greyed && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip("%s",
+                        path == cloth_backend::gpu ? fragment_why.c_str() : compute_why.c_str());
   }
   // Fixed lines: a hint, a measurement or a refusal appearing moves nothing below.
   if (std::string why; !the_scene.gpu_can_run(cloth_backend::gpu, why))

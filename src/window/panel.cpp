@@ -122,7 +122,9 @@ float build_control_panel(scene& the_scene, user_actions& actions) {
       the_scene.panel_needs_state = true;
       show_energy(the_scene);
     }
-    if (ImGui::CollapsingHeader("Q4 stability map (dt x K)"))
+    const bool map_open = ImGui::CollapsingHeader("Q4 stability map (dt x K)");
+    log_widget("stability map");
+    if (map_open)
       show_stability_map(the_scene);
     if (section("Display"))
       edit_display(the_scene.display, actions);

@@ -135,8 +135,8 @@ void scene::draw_scene(double frame_seconds, int left, int width, int height) {
   stability_explorer.advance(map_seconds_per_frame);  // the browser's map (no threads)
   if (backend() != cloth_backend::cpu) {
     // The integrator, tearing or self-collision can change while the cloth is on the GPU (the
-    // panel): what the GPU does not run (gpu_cloth::supports) sends the cloth back to the CPU.
-    if (std::string why; !gpu_cloth::supports(cloth_stage.parameters, why))
+    // panel): what its path does not run (cloth_paths::runs) sends the cloth back to the CPU.
+    if (std::string why; !cloth_paths::runs(backend(), cloth_stage.parameters, why))
       fall_back_to_cpu(why);
   }
   const int steps = steps_for_this_frame(frame_seconds);

@@ -79,7 +79,14 @@ void scene::toggle_cloth_backend() {
   switch (backend()) {
     case cloth_backend::cpu:
     case cloth_backend::cpu_parallel:
-      switch_cloth_backend(cloth_backend::gpu);
+      // XPBD skips the fragment path, which runs the mass-spring integrators only.
+      if (std::string why;
+          !cloth_paths::runs(cloth_backend::gpu, cloth_stage.parameters, why) &&
+          cloth_paths::runs(cloth_backend::gpu_compute, cloth_stage.parameters, why) &&
+          compute_offered(why))
+        switch_cloth_backend(cloth_backend::gpu_compute);
+      else
+        switch_cloth_backend(cloth_backend::gpu);
       return;
     case cloth_backend::gpu:
       if (std::string why; compute_offered(why))

@@ -79,6 +79,7 @@ void stability_map::start(stage_kind stage, const single_spring_parameters& spri
   column_factor_ = settings.time_steps[1] / settings.time_steps[0];
   sweep_.start(settings);
   started_ = true;
+  ended_said_ = false;
   stage_ = stage;
 }
 

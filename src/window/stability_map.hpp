@@ -43,6 +43,14 @@ class stability_map {
   bool running() const { return sweep_.running(); }
   double fraction_done() const { return sweep_.fraction_done(); }
   bool started() const { return started_; }
+  // True once after the map of the last start() ended (done or stopped), so that its result is
+  // said once.
+  bool just_ended() {
+    if (!started_ || ended_said_ || sweep_.running())
+      return false;
+    ended_said_ = true;
+    return true;
+  }
   stage_kind stage() const { return stage_; }
   // The cells so far, row by row from the smallest K, each row from the smallest dt.
   std::vector<sweep_cell> cells() const { return sweep_.snapshot(); }
@@ -53,6 +61,7 @@ class stability_map {
  private:
   background_sweep sweep_;
   bool started_ = false;
+  bool ended_said_ = false;
   stage_kind stage_ = stage_kind::spring;
   int current_column_ = columns / 2;
   double column_factor_ = 1.4142135623730951;

@@ -45,9 +45,12 @@ void show_stability(const stability_estimate& estimate) {
   fixed_lines(estimate.explanation, 3, text_style::disabled);
 }
 
-// dt, mu, m, g0 and the integrator, which every stage has (model.md, "Common"). While the cloth
-// runs on the GPU, the integrators the GPU does not have are offered greyed out.
-void edit_dynamics(dynamics_parameters& dynamics, stage_kind stage, bool on_gpu = false) {
+// dt, mu, m, g0 and the integrator, which every stage has (model.md, "Common"), and XPBD's
+// numbers when it is the integrator. The integrators that the cloth's path does not run are
+// offered greyed out, the reason in their tooltip (the fragment GPU path: the two Euler schemes
+// only; XPBD where this copy has none).
+void edit_dynamics(dynamics_parameters& dynamics, stage_kind stage,
+                   cloth_backend backend = cloth_backend::cpu) {
   const bool cloth = stage == stage_kind::cloth;
   parameter_slider("dt (s)", dynamics.time_step, "--dt", stage, "%.5f");
   note_time_step_slider();
@@ -58,18 +61,31 @@ void edit_dynamics(dynamics_parameters& dynamics, stage_kind stage, bool on_gpu 
   parameter_slider("gravity g0 (m/s^2)", dynamics.gravity, "--gravity", stage, "%.2f");
   if (ImGui::BeginCombo("integrator", std::string(integrator_name(dynamics.integrator)).c_str())) {
     for (const integrator_kind kind : all_integrators) {
+      cloth_parameters asked;
+      asked.dynamics.integrator = kind;
       std::string why_not;
-      const bool offered = !on_gpu || gpu_cloth::supports_integrator(kind, why_not);
+      const bool offered = cloth_paths::runs(backend, asked, why_not);
       ImGui::BeginDisabled(!offered);
       if (ImGui::Selectable(std::string(integrator_name(kind)).c_str(),
                             kind == dynamics.integrator))
         dynamics.integrator = kind;
       ImGui::EndDisabled();
+      if (!offered && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("%s", why_not.c_str());
     }
     ImGui::EndCombo();
   }
+  if (dynamics.integrator == integrator_kind::xpbd) {
+    // XPBD's substeps and sweeps (docs/model.md): the springs' stiffness K is reached only when
+    // (omega h)^2 stays below 1 or the sweeps are many (the stability readout below says which).
+    parameter_slider("XPBD substeps", dynamics.xpbd.substeps, "--xpbd-substeps", stage);
+    parameter_slider("XPBD iterations", dynamics.xpbd.iterations, "--xpbd-iterations", stage);
+    parameter_slider("XPBD damping beta (N s/m)", dynamics.xpbd.constraint_damping,
+                     "--xpbd-damping", stage, "%.2f");
+  }
   if (cloth)  // the same line on both paths, so that switching moves nothing
-    fixed_lines("GPU path: semi-implicit and explicit Euler only", 1, text_style::disabled);
+    fixed_lines("GPU fragment: the two Euler schemes only; GPU compute: these and xpbd", 1,
+                text_style::disabled);
 }
 
 // The mouse drag's spring on a mass of stages 1 and 2 (model.md, "drag").
@@ -182,9 +198,9 @@ void edit_interaction(scene& the_scene, user_actions& actions) {
   slider("thickness d (m)", thickness, range.low, std::max(range.low, std::min(range.high, h)),
          "%.3f", range.logarithmic);
   p.self_collision_thickness = self_collision ? thickness : 0.0;
-  // The GPU paths run what gpu_cloth::supports accepts; anything else takes the cloth back to
-  // the CPU (scene::draw_scene), and this line says why beforehand.
-  if (std::string why; the_scene.backend() != cloth_backend::cpu && !gpu_cloth::supports(p, why))
+  // The GPU paths run what cloth_paths::runs accepts; anything else takes the cloth back to the
+  // CPU (scene::draw_scene), and this line says why beforehand.
+  if (std::string why; !cloth_paths::runs(the_scene.backend(), p, why))
     fixed_lines(why, 2, text_style::coloured, caution_yellow);
   else
     fixed_lines("", 2);
@@ -277,7 +293,7 @@ void edit_cloth(scene& the_scene, user_actions& actions) {
   cloth_parameters& p = stage.parameters;
   const stage_kind cloth = stage_kind::cloth;
   if (section("Q4 dt, damping")) {
-    edit_dynamics(p.dynamics, stage_kind::cloth, the_scene.backend() != cloth_backend::cpu);
+    edit_dynamics(p.dynamics, stage_kind::cloth, the_scene.backend());
     show_stability(estimate_stability(stage));
   }
   if (section("Q8 springs: three stiffnesses")) {

@@ -140,6 +140,26 @@ INSTANTIATE_TEST_SUITE_P(
         bad_usage{"ComputeWithRk4",
                   {"--backend", "gpu-compute", "--integrator", "rk4"},
                   "--integrator rk4"},
+        // XPBD's options without XPBD; in the teacher's copy, its ranges, the fragment path that
+        // is mass-spring only and the damping factor of a substep (1 - mu h, h = dt / substeps).
+        bad_usage{"XpbdOptionWithoutXpbd", {"--xpbd-substeps", "5"}, "--xpbd-substeps: XPBD's"},
+        // BEGIN TEACHER
+        bad_usage{"XpbdOnTheFragmentPath",
+                  {"--integrator", "xpbd", "--backend", "gpu"},
+                  "--integrator xpbd: the gpu path"},
+        bad_usage{"XpbdWithoutSubsteps",
+                  {"--integrator", "xpbd", "--xpbd-substeps", "0"},
+                  "--xpbd-substeps 0"},
+        bad_usage{"XpbdTooManyIterations",
+                  {"--integrator", "xpbd", "--xpbd-iterations", "1001"},
+                  "--xpbd-iterations 1001"},
+        bad_usage{"XpbdDampingPastOneOverTheSubstep",
+                  {"--integrator", "xpbd", "--dt", "0.1", "--xpbd-substeps", "1", "--mu", "20"},
+                  "--mu 20: mu h = 2"},
+        // END TEACHER
+        // COPY| bad_usage{"XpbdInTheTeachersCopy",
+        // COPY|           {"--integrator", "xpbd"},
+        // COPY|           "--integrator xpbd: XPBD (--integrator xpbd) is in the teacher's copy"},
         bad_usage{"DragOutsideTheGrid", {"--drag", "9,0:0,0,0"}, "outside the 4 x 4 grid"},
         bad_usage{"DragAPinnedCorner", {"--drag", "3,0:0,0,0"}, "is pinned"},
         bad_usage{"DragWithoutTarget", {"--drag", "1,1"}, "--drag 1,1"},

@@ -190,6 +190,42 @@ TEST(SolutionClothParallel, AgreesWithEveryContactAndTearingTogether) {
   expect_same_springs(fast_result, readable);
 }
 
+// XPBD (xpbd.hpp): the parallel path runs the readable solver's arithmetic, colour by colour,
+// the constraints of a colour sharing no particle, so that no order of the threads changes a
+// number: the two paths agree bitwise (difference 0), with the wind, the drag, the sphere, the
+// ground, the paper's damping, several sweeps, tearing and question 10's scaling.
+TEST(ClothParallelXpbd, AgreesBitwiseWithTheReadableSolver) {
+  std::vector<agreement_case> xpbd_cases;
+  for (agreement_case c : cases()) {
+    if (c.parameters.dynamics.integrator == integrator_kind::explicit_euler)
+      continue;
+    c.parameters.dynamics.integrator = integrator_kind::xpbd;
+    c.parameters.dynamics.time_step = 0.01;  // a step the Euler schemes could not take
+    c.steps = 150;
+    xpbd_cases.push_back(c);
+  }
+  cloth_parameters damped = xpbd_cases[0].parameters;
+  damped.dynamics.xpbd = {.substeps = 4, .iterations = 3, .constraint_damping = 30.0};
+  xpbd_cases.push_back({"damped, 4 x 3 sweeps", damped, 150});
+  cloth_parameters tearing = damped;
+  tearing.tear_strain = 0.25;
+  tearing.drag = {
+      .enabled = true, .ku = 23, .kv = 23, .target = {1.5, 1.5, -1.0}, .stiffness = 5000.0};
+  xpbd_cases.push_back({"tearing", tearing, 150});
+  for (const agreement_case& c : xpbd_cases) {
+    spring_mesh readable(c.parameters);
+    spring_mesh fast_result(c.parameters);
+    const std::size_t intact = spring_count(readable);
+    const double difference = run_both(c.steps, readable, fast_result);
+    const std::size_t torn = intact - spring_count(readable);
+    std::printf("  xpbd, %-24s %d steps: max relative difference %.3g, %zu springs torn\n", c.name,
+                c.steps, difference, torn);
+    EXPECT_EQ(difference, 0.0) << c.name;
+    EXPECT_EQ(torn > 0, c.parameters.tear_strain > 0.0) << c.name;
+    expect_same_springs(fast_result, readable);
+  }
+}
+
 // The comparison can fail: a 0.1 % stiffer cloth on the fast path is far outside 1e-9.
 TEST(ClothParallel, TheComparisonSeesAStifferCloth) {
   cloth_parameters p = cases()[0].parameters;

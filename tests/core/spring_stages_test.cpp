@@ -235,6 +235,8 @@ void expect_every_integrator_oscillates_about_the_target(Stage stage, const char
   const double omega = 10.0, dt = 1e-4;
   const int steps = 1000;
   for (const integrator_kind kind : all_integrators) {
+    if (kind == integrator_kind::xpbd && !xpbd_available())
+      continue;  // the teacher's copy's
     stage.parameters.stiffness = 0.0;
     stage.parameters.dynamics = {
         .time_step = dt, .damping = 0.0, .mass = 1.0, .gravity = 0.0, .integrator = kind};

@@ -1,5 +1,5 @@
-"""clothlab's headless CSV against the independent reference_model.py, for the three stages, both
-integrators, pins, wind, ground and non-default parameters.
+"""clothlab's headless CSV against the independent reference_model.py, for the three stages, the
+two Euler integrators and XPBD, pins, wind, ground and non-default parameters.
 Usage: test_against_reference.py CLOTHLAB [spring|solution]
   spring: the single spring only (no code of the lab's questions; passes in the student copy);
   solution: the chain and the cloth, which need the solution of questions 5 to 9 and 13.
@@ -27,6 +27,14 @@ cases += [
  # Tearing (20 of the 50 triangles torn).
  (['--stage','cloth','--N','6','--steps','300','--tear-strain','0.1','--drag','5,5:1.5,1.5,0.5','--drag-stiffness','1000'], dict(stage='cloth',steps=300,N=6,tear=0.1,drag=(5,5,(1.5,1.5,0.5)),Kd=1000.0)),
 ]
+# XPBD (the teacher's copy's sixth integrator, model.md): the three stages, the cloth with wind,
+# drag and ground, the paper's damping and several sweeps.
+cases += [
+ (['--stage','spring','--steps','300','--integrator','xpbd','--K','500','--dt','0.02'], dict(stage='spring',steps=300,integ='xpbd',K=500,dt=0.02)),
+ (['--stage','coupled','--chain','4','--steps','300','--integrator','xpbd','--K','50','--xpbd-substeps','3','--xpbd-iterations','2','--xpbd-damping','4'], dict(stage='coupled',steps=300,chain=4,K=50,integ='xpbd',substeps=3,iterations=2,beta=4.0)),
+ (['--stage','cloth','--N','7','--steps','200','--integrator','xpbd','--dt','0.01','--wind-strength','15','--wind-dir','1,2,0.5','--ground-z','-0.4','--drag','6,6:0.6,0.6,0.3','--drag-stiffness','400'], dict(stage='cloth',steps=200,N=7,integ='xpbd',dt=0.01,Kw=15,wdir=(1,2,0.5),ground=-0.4,drag=(6,6,(0.6,0.6,0.3)),Kd=400.0)),
+ (['--stage','cloth','--N','6','--steps','150','--integrator','xpbd','--dt','0.02','--K-struct','1e5','--K-shear','4e4','--K-bend','1e4','--xpbd-substeps','4','--xpbd-iterations','3','--xpbd-damping','50','--pins','none','--ground-z','-0.3'], dict(stage='cloth',steps=150,N=6,integ='xpbd',dt=0.02,Ks=1e5,Ksh=4e4,Kb=1e4,substeps=4,iterations=3,beta=50.0,pins=False,ground=-0.3)),
+]
 # The other paths on the same cloth cases: cpu-parallel in double precision (the same 1e-12),
 # the two GPU paths in single precision (FLOAT: their bounds below).
 FLOAT = None
@@ -39,11 +47,15 @@ if len(sys.argv) > 2 and sys.argv[2] == 'solution':
 # (u = 2^-24); the integrator carries a difference G times further per step (semi-implicit: 1;
 # explicit: sqrt(1 + (omega dt)^2) for the stiffest modes, omega = sqrt(4 (K + K_shear) / m));
 # velocities differ by omega times the positions. P: the reference run's largest coordinate.
+# XPBD rounds the positions once a substep (tests/gpu/gpu_xpbd_test.cpp): S = steps x substeps
+# roundings, carried without growth.
 def float_bounds(kw, largest):
     omega = math.sqrt(4 * (kw.get('Ks', 5000.) + kw.get('Ksh', 2000.)) / kw.get('m', 1.0))
     dt = kw.get('dt', 0.002)
     growth = math.sqrt(1 + (omega * dt)**2) if kw.get('integ') == 'explicit' else 1.0
     carried = sum(growth**k for k in range(kw['steps']))
+    if kw.get('integ') == 'xpbd':
+        carried = kw['steps'] * kw.get('substeps', 10)
     position = 2.0**-24 * largest * carried
     return position, omega * position
 
@@ -63,6 +75,8 @@ for backend, tolerance in PATHS:
   for args,kw in cases:
     if backend != 'cpu' and (kw['stage'] != 'cloth' or ('--self-collision' in args and backend != 'cpu-parallel')):
         continue  # the other paths run the cloth; self-collision is the CPU paths'
+    if backend == 'gpu' and kw.get('integ') == 'xpbd':
+        continue  # the fragment path is mass-spring only
     if tolerance is FLOAT and on_a_threshold(args):
         continue
     run_args = [B,'--headless','--csv',path]+args+['--backend',backend]

@@ -193,6 +193,16 @@ def main():
                   and "return false;" in absent and "#pragma omp" not in absent,
                   "the copy builds a parallel path, not the stand-in that names the teacher's "
                   "copy")
+            # Nor XPBD, which steps the cloth from its springs and computes the wind (questions
+            # 8 and 13 another way): xpbd_absent.cpp in its place, on no path.
+            absent = (dest / "src/core/xpbd_absent.cpp").read_text()
+            xpbd_files = ["src/core/xpbd.cpp", "src/core/cloth_parallel_xpbd.cpp",
+                          "shaders/gpu_xpbd_predict.comp", "shaders/gpu_xpbd_solve.comp",
+                          "shaders/gpu_xpbd_velocity.comp"]
+            check(not any((dest / name).exists() for name in xpbd_files)
+                  and "xpbd.cpp" not in re.sub(r"#[^\n]*", "", cmake)
+                  and "in the teacher's copy" in absent and "return false;" in absent,
+                  "the copy builds XPBD, not the stand-in that names the teacher's copy")
             check(not (dest / "tests/model").exists() and
                   not (dest / "shaders/gpu_compute_step.comp").exists(),
                   "the copy has the Python reference model or the compute shader")

@@ -3,6 +3,7 @@
 # does. Every wait has a timeout, so that the test fails instead of hanging.
 #   window_test.sh PATH/TO/clothlab-window keys|divergence|gpu_switch|frames|steady_panel|paused_idle
 #                  |grab|grab_gpu|grab_compute|rip|presets|spring_plot|fell_out_of_view|orbit|sphere|grab_mass
+#                  |xpbd_map
 set -euo pipefail
 
 program=$(realpath "$1")
@@ -81,6 +82,11 @@ elif [ "$scenario" = sphere ]; then
   arguments=(--stage cloth --pins none --sphere 0,0,-0.6,0.3)
 elif [ "$scenario" = grab_mass ]; then
   arguments=(--stage coupled)
+elif [ "$scenario" = xpbd_map ]; then
+  # Question 10's case: a cloth ten times stiffer than the default at dt = 0.01 s, where the
+  # Euler schemes explode (their limit: 2 ms), stepped by XPBD.
+  arguments=(--stage cloth --integrator xpbd --N 12 --K-struct 1e5 --K-shear 4e4 --K-bend 1e4
+    --dt 0.01)
 fi
 # Every run prints where the dt slider is whenever it or the run's state changes.
 CLOTHLAB_PRINT_LAYOUT=1 "$program" "${arguments[@]}" >window.log 2>&1 &
@@ -600,8 +606,25 @@ case "$scenario" in
     check_image "$on_cpu" 1280 800 200
     check_cloth_drawn "$on_cpu"
     ;;
+  xpbd_map)
+    # The stability map of XPBD on that cloth: every cell (dt from dt/8 to 8 dt, K from K/10 to
+    # 10 K) stays bounded, and the map says so in its line when it ends.
+    click_widget "stability map"
+    wait_for_log 'widget "Map dt x K"' || fail "the stability map's section did not open"
+    click_widget "Map dt x K"
+    for _ in $(seq 600); do
+      grep -q "^clothlab-window: stability map (cloth, xpbd): " window.log && break
+      sleep 0.25
+    done
+    line=$(grep "^clothlab-window: stability map (cloth, xpbd): " window.log) ||
+      fail "the map of XPBD did not end within 150 s"
+    echo "window test: $line"
+    [[ "$line" == *": 117 of 117 cells run, 0 diverged" ]] ||
+      fail "XPBD's map has a diverged cell or did not run every cell: $line"
+    check_image "$(screenshot_of cloth)" 1280 800 200
+    ;;
   *)
-    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, presets, spring_plot, fell_out_of_view, orbit, sphere or grab_mass)"
+    fail "unknown scenario $scenario (keys, divergence, gpu_switch, frames, steady_panel, paused_idle, grab, grab_gpu, grab_compute, rip, presets, spring_plot, fell_out_of_view, orbit, sphere, grab_mass or xpbd_map)"
     ;;
 esac
 
