@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "core/i18n.hpp"
 #include "gl/gl_state_guard.hpp"
 #include "gl/gpu_cloth.hpp"
 
@@ -15,8 +16,8 @@ namespace clothlab {
 // shows it greyed with this reason, and nothing of it can be loaded or run.
 bool gpu_cloth_compute::available(std::string& error) {
   error =
-      "the compute-shader GPU path needs OpenGL 4.3 compute shaders, which WebGL2 (this "
-      "browser's GL) does not have";
+      tr("the compute-shader GPU path needs OpenGL 4.3 compute shaders, which WebGL2 (this "
+         "browser's GL) does not have");
   return false;
 }
 gpu_cloth_compute::~gpu_cloth_compute() = default;
@@ -83,8 +84,8 @@ bool gpu_cloth_compute::available(std::string& error) {
   glGetIntegerv(GL_MINOR_VERSION, &minor);
   if (major > 4 || (major == 4 && minor >= 3))
     return true;
-  error = "the compute-shader path needs OpenGL 4.3; this context has " + std::to_string(major) +
-          "." + std::to_string(minor);
+  error =
+      format(tr("the compute-shader path needs OpenGL 4.3; this context has %d.%d"), major, minor);
   return false;
 }
 
