@@ -1,6 +1,8 @@
 #include "core/i18n.hpp"
 
+#if !defined(__EMSCRIPTEN__)
 #include <libintl.h>
+#endif
 
 #include <algorithm>
 #include <cctype>
@@ -8,17 +10,18 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <vector>
 
 #include "core/executable_path.hpp"
+#include "core/mo_catalogue.hpp"
 
 namespace clothlab {
 namespace {
 
 constexpr const char* text_domain = "clothlab";  // the catalogues' name: clothlab.mo
-// English first: the code's own language, the default.
-constexpr language known_languages[] = {{"en", "English"}, {"fr", "Français"}};
 
-std::string_view chosen = "en";
+std::string chosen = "en";
 unsigned generation = 0;
 bool catalogues_open = false;
 
@@ -31,7 +34,67 @@ bool is_c_locale(std::string_view name) {
   return name.empty() || name == "C" || name == "POSIX";
 }
 
-#if !defined(__EMSCRIPTEN__)
+std::filesystem::path catalogue_file(std::string_view code) {
+  return catalogue_directory() / std::string(code) / "LC_MESSAGES" /
+         (std::string(text_domain) + ".mo");
+}
+
+// The languages: English, the code's own, then one per catalogue built (locale/<code>/), each
+// named in itself by its catalogue's translation of "English". A new po/<code>.po is a new
+// language, with nothing else to change.
+using language_names = std::vector<std::pair<std::string, std::string>>;  // (code, name)
+
+const language_names& discovered_names() {
+  static const language_names list = [] {
+    language_names l;
+    // TRANSLATORS: the name of your language, in your language ("Français", "Deutsch"): the
+    // window's list of languages shows it.
+    l.emplace_back("en", N_("English"));
+    std::vector<std::string> codes;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(catalogue_directory(), ec)) {
+      const std::string code = entry.path().filename().string();
+      if (code != "en" && std::filesystem::is_regular_file(catalogue_file(code), ec))
+        codes.push_back(code);
+    }
+    std::sort(codes.begin(), codes.end());
+    for (const std::string& code : codes) {
+      mo_catalogue catalogue;
+      std::string error;
+      const char* name =
+          catalogue.load(catalogue_file(code), error) ? catalogue.find("English") : nullptr;
+      l.emplace_back(code, name != nullptr ? name : code);
+    }
+    return l;
+  }();
+  return list;
+}
+
+// The same as views of the names, which stay where they are.
+const std::vector<language>& discovered_languages() {
+  static const std::vector<language> views = [] {
+    std::vector<language> v;
+    for (const auto& [code, name] : discovered_names())
+      v.push_back({code, name});
+    return v;
+  }();
+  return views;
+}
+
+const language* find_language(std::string_view code) {
+  for (const language& l : discovered_languages()) {
+    if (l.code == code)
+      return &l;
+  }
+  return nullptr;
+}
+
+#if defined(__EMSCRIPTEN__)
+// The browser: the catalogues read whole by mo_catalogue (mo_catalogue.hpp says why not musl's
+// gettext), one per language once chosen, kept (tr() returns pointers into them).
+std::map<std::string, mo_catalogue, std::less<>> loaded;
+const mo_catalogue* catalogue = nullptr;
+#else
 // glibc's gettext (and GNU libintl's) reads the catalogue of LANGUAGE's language, whatever the
 // locale of the messages' category, as long as that locale is not "C". The user's own locale
 // where it is installed; else C.UTF-8, which glibc always has, and which needs no French locale
@@ -56,13 +119,23 @@ void set_messages_locale() {
 const char* tr(const char* message) {
   if (chosen == "en" || !catalogues_open)
     return message;
+#if defined(__EMSCRIPTEN__)
+  const char* found = catalogue != nullptr ? catalogue->find(message) : nullptr;
+  return found != nullptr ? found : message;
+#else
   return dgettext(text_domain, message);
+#endif
 }
 
 const char* trn(const char* singular, const char* plural, unsigned long n) {
   if (chosen == "en" || !catalogues_open)
     return n == 1 ? singular : plural;
+#if defined(__EMSCRIPTEN__)
+  const char* found = catalogue != nullptr ? catalogue->find_plural(singular, n) : nullptr;
+  return found != nullptr ? found : n == 1 ? singular : plural;
+#else
   return dngettext(text_domain, singular, plural, n);
+#endif
 }
 
 const char* colon() {
@@ -86,27 +159,29 @@ std::string format(const char* format_string, ...) {
 }
 
 std::span<const language> languages() {
-  return known_languages;
+  return discovered_languages();
 }
 
 std::string language_codes() {
   std::string codes;
-  for (const language& l : known_languages)
+  for (const language& l : languages())
     codes += (codes.empty() ? "" : ", ") + std::string(l.code);
   return codes;
 }
 
 std::string_view language_of_locale(std::string_view locale_name) {
-  // "fr_FR.UTF-8@euro", a browser's "fr-FR": the language is what comes before the territory,
-  // codeset and modifier.
-  std::string code(locale_name.substr(0, locale_name.find_first_of("_-.@")));
-  std::transform(code.begin(), code.end(), code.begin(),
+  // "fr_FR.UTF-8@euro", a browser's "fr-FR": the language and territory ("fr_FR", for a
+  // catalogue of its own), else the language alone ("fr"), before the codeset and modifier.
+  std::string name(locale_name.substr(0, locale_name.find_first_of(".@")));
+  std::replace(name.begin(), name.end(), '-', '_');
+  const std::size_t territory = name.find('_');
+  std::transform(name.begin(), name.begin() + std::min(territory, name.size()), name.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  for (const language& l : known_languages) {
-    if (l.code == code)
-      return l.code;
+  for (const std::string& code : {name, name.substr(0, territory)}) {
+    if (const language* found = find_language(code))
+      return found->code;
   }
-  return known_languages[0].code;
+  return languages().front().code;
 }
 
 std::string_view language_from_environment() {
@@ -148,9 +223,9 @@ std::filesystem::path catalogue_directory() {
 }
 
 void start_messages() {
+#if !defined(__EMSCRIPTEN__)
   bindtextdomain(text_domain, catalogue_directory().string().c_str());
   bind_textdomain_codeset(text_domain, "UTF-8");
-#if !defined(__EMSCRIPTEN__)
   set_messages_locale();
 #endif
   catalogues_open = true;
@@ -158,20 +233,23 @@ void start_messages() {
 }
 
 bool set_language(std::string_view code) {
-  const auto found = std::find_if(std::begin(known_languages), std::end(known_languages),
-                                  [&](const language& l) { return l.code == code; });
-  if (found == std::end(known_languages))
+  const language* found = find_language(code);
+  if (found == nullptr)
     return false;
   chosen = found->code;
-  const std::string name(chosen);
 #if defined(__EMSCRIPTEN__)
-  // musl's gettext reads the catalogue of the messages' locale, whatever its name:
-  // <dir>/fr/LC_MESSAGES/clothlab.mo.
-  std::setlocale(LC_MESSAGES, name.c_str());
+  catalogue = nullptr;
+  if (chosen != "en") {
+    auto [entry, first_time] = loaded.try_emplace(chosen);
+    std::string error;
+    if (first_time && !entry->second.load(catalogue_file(chosen), error))
+      std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+    catalogue = &entry->second;
+  }
 #else
   // The catalogue gettext reads is LANGUAGE's; setting the locale again makes it forget the
   // translations it has looked up in the language before.
-  setenv("LANGUAGE", name.c_str(), 1);
+  setenv("LANGUAGE", chosen.c_str(), 1);
   if (!messages_locale.empty())
     std::setlocale(LC_MESSAGES, messages_locale.c_str());
 #endif

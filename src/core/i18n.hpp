@@ -33,7 +33,8 @@ constexpr const char* N_(const char* message) {
 // format(tr("diverged at step %ld"), step).
 [[gnu::format(printf, 1, 2)]] std::string format(const char* format_string, ...);
 
-// The languages clothlab speaks: English (the code's own) and those of po/.
+// The languages clothlab speaks: English (the code's own), then one per catalogue built from po/
+// (catalogue_directory()/<code>/), each named by its catalogue's translation of "English".
 struct language {
   std::string_view code;  // "en", "fr": the --lang value, the catalogue's folder
   std::string_view name;  // in the language itself: "English", "Français"
