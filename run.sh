@@ -39,7 +39,7 @@ states=$(mktemp -d)
 trap 'rm -rf "$states"' EXIT
 tour=(
   "spring:--stage spring --steps 100"
-  "coupled:--stage coupled --steps 150"
+  "coupled:--stage coupled --steps 150 --csv $states/chain.csv --csv-every 150"
   "cloth:--stage cloth --steps 1500 --csv $states/cpu.csv --csv-every 1500"
   "cloth-wind:--stage cloth --steps 1500 --wind-strength 20 --wind-dir 0,1,0.2"
   "cloth-gpu:--stage cloth --backend gpu --steps 1500 --csv $states/gpu.csv --csv-every 1500"
@@ -51,6 +51,25 @@ for entry in "${tour[@]}"; do
   shown=${entry#*:}
   echo "  wrote out/$name.png  (clothlab --headless ${shown%% --csv *} --png out/$name.png)"
 done
+
+# What the chain's picture shows, from its last step: the last mass hangs below the one above
+# it, or fell away from it (farther than four rest lengths, 2 m: its spring does not hold it).
+chain_state() {  # CSV
+  awk -F, 'NR > 1 { if ($1 != step) { n = 0; step = $1 } n++; x[n] = $4; y[n] = $5; z[n] = $6 }
+    END {
+      if (n < 3) { print "unknown"; exit }
+      d = sqrt((x[n] - x[n-1])^2 + (y[n] - y[n-1])^2 + (z[n] - z[n-1])^2)
+      if (d > 2) printf "its last mass fell away, %.3g m below the one above it\n", z[n-1] - z[n]
+      else print "the chain hangs and sways"
+    }' "$1" 2>/dev/null || echo unknown
+}
+if [ -f "$states/chain.csv" ]; then
+  chain=$(chain_state "$states/chain.csv")
+  echo "clothlab: what the chain picture shows (out/coupled.png): $chain."
+  case "$chain" in
+    its\ last*) echo "          Its lower spring pulls no mass: question 5 (coupled_springs::compute_force)." ;;
+  esac
+fi
 
 # What the cloth of a picture does, from its last step: hangs, lies on the floor, or went
 # through it (the floor at z = -1; the questions that hold the cloth up are 6 to 9).

@@ -15,7 +15,7 @@ uniform vec3 stiffness;    // K (N/m) of the structural, shear and bending sprin
 uniform vec3 rest_length;  // L0 (m) of the structural, shear and bending springs
 
 uniform float wind_strength;   // K_w, N
-uniform vec3 wind_direction;   // u_w, unit
+uniform vec3 wind_direction;   // u_w, unit, also when K_w = 0 (no wind)
 
 // The mouse drag, an addition (docs/model.md): F_d = K_d (q - p) on one particle.
 uniform bool drag_enabled;       // the mouse drag is on
@@ -55,7 +55,8 @@ void main() {
   // STUDENT(handout)| // TODO Q12 (GPU springs): add the spring forces to this particle's force,
   // STUDENT(handout)| // as compute_force does on the CPU (question 8), in single precision. The
   // STUDENT(handout)| // 12 possible neighbours are in neighbours[] (offset xy, family z);
-  // STUDENT(handout)| // joined(k, i) says whether a spring joins this texel to its neighbour i;
+  // STUDENT(handout)| // joined(k, i) says whether a spring joins this texel to its neighbour i
+  // STUDENT(handout)| // (inside the grid, and not torn: clothlab's tearing works through it);
   // STUDENT(handout)| // positions come from position_texture (texelFetch), and stiffness[family]
   // STUDENT(handout)| // and rest_length[family] are set by the CPU. For now the GPU cloth falls
   // STUDENT(handout)| // under gravity alone. Done when ./test.sh -L q12 passes.
@@ -76,7 +77,8 @@ void main() {
   // BEGIN SOLUTION Q13: the wind on the GPU
   // STUDENT(handout)| // TODO Q13 (GPU wind): the wind of question 13 on the GPU, as on the CPU:
   // STUDENT(handout)| // F_w = K_w <n, u_w> n, n read from normal_texture at this texel,
-  // STUDENT(handout)| // K_w = wind_strength, u_w = wind_direction (unit).
+  // STUDENT(handout)| // K_w = wind_strength, u_w = wind_direction (a unit vector, also when
+  // STUDENT(handout)| // K_w = 0).
   // STUDENT(guided)| // TODO Q13 (GPU wind): add F_w = K_w <n, u_w> n, with n read from
   // STUDENT(guided)| // normal_texture at this texel, K_w = wind_strength and u_w = wind_direction
   // STUDENT(guided)| // (already unit).

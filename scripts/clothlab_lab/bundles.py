@@ -1,12 +1,13 @@
 """The Gradescope bundle: setup.sh, run_autograder and the grader's kit (the generated student
-copy, the stubs, the lab's manifest and this package), never the solution."""
+copy, the stubs, the lab's manifest and this package), never the solution. Made from what git
+tracks and what the generator writes: no untracked file of the teacher's checkout (a compiler's
+cache, an object file) ever reaches it."""
 import re
-import shutil
 import tempfile
 import zipfile
 from pathlib import Path
 
-from . import grading
+from . import grading, regions
 from .manifest import ROOT
 
 # The bundle's two scripts, teacher-only files of their own: setup.sh (its @PACKAGES@ filled
@@ -25,9 +26,15 @@ def make_bundle(path):
     with tempfile.TemporaryDirectory(prefix="clothlab-bundle-") as tmp:
         kit = Path(tmp) / "clothlab-grade"
         grading.generate_kit(kit)
-        shutil.copy2(ROOT / "scripts/grade", kit / "grade")
-        shutil.copytree(Path(__file__).resolve().parent, kit / "clothlab_lab",
-                        ignore=shutil.ignore_patterns("__pycache__"))
+        # The grader and its package: their tracked files only.
+        package = Path(__file__).resolve().parent.relative_to(ROOT).as_posix() + "/"
+        grader = {"scripts/grade": kit / "grade"}
+        grader.update({name: kit / "clothlab_lab" / name[len(package):]
+                       for name in regions.project_files(ROOT) if name.startswith(package)})
+        for name, target in grader.items():
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.write_bytes((ROOT / name).read_bytes())
+            target.chmod((ROOT / name).stat().st_mode & 0o777)
         setup = (TEMPLATES / "setup.sh").read_text()
         files = {"setup.sh": setup.replace("@PACKAGES@", debian_packages()),
                  "run_autograder": (TEMPLATES / "run_autograder").read_text()}

@@ -1,20 +1,21 @@
-"""Grading a class: the kit (the student copy, built once), then for each submission, in its
-scratch folder and in the sandbox: its files unpacked, the student's own taken, built into a copy
-of the kit, its question tests run; the scores and the outputs, whatever a submission holds.
+"""Grading a class: the kit (the student copy, built once, and its checkers), then for each
+submission, in its scratch folder and in the sandbox: its files unpacked, the student's own
+taken, built into a copy of the kit, its question tests run; the scores and the outputs,
+whatever a submission holds.
 
-The kit's folder (--work, or --kit):
-    manifest.json   the lab (grading/lab.json) and the copy's version, as when the kit was made
-    stubs/          the student's files as handed out
-    base/copy/      the student copy and its build (build-grade/), made by the grader itself
-A submission's only writable place is its scratch folder, /var/tmp/clothlab-grade/<hash of the
-kit's path> (a sized tmpfs where root may mount one): base/copy is copied there before each
-submission, and it is emptied after. The build is configured for that folder's copy/, so that
-each submission's build there is incremental: only the student's files are compiled, and the
-question tests relinked.
+The kit (kits.py) is made once in --work (or --kit), root's and closed to every other user;
+beside it the grader keeps verdicts/ (what the checkers write), logs/ (the sandboxed steps'
+output) and, in the fallback, staged/ (the submissions, copied before the first one runs).
+A submission's scratch folder, /var/tmp/clothlab-grade/<hash of the kit's path> (a sized tmpfs
+where root may mount one), is root's too: base/copy is copied there before each submission as
+copy/, the submission's to write only while it builds its runner there, read-only to its tests,
+which write only run/. The build is configured for that copy/, so that each submission's build
+is incremental: the student's files compiled, the runner (lab_runner) relinked. The checkers run
+as the grader, from checkers/, and start that runner in the sandbox; nothing that a
+submission can write is ever run, trusted or read by the grader outside it.
 """
 import concurrent.futures
 import fcntl
-import hashlib
 import json
 import os
 import re
@@ -28,9 +29,12 @@ import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
 from . import manifest as lab_manifest
-from . import regions, reports, sandbox as confinement, submissions
-from .manifest import MARKER_FILE, ROOT
-from .submissions import content_version, copy_files, marker_version
+from . import reports, sandbox as confinement, submissions
+from .kits import (KIT_FORMAT, RUNNER, GradeError, Kit, build_dir, generate_kit, kit_copy,
+                   lab_targets, make_checkers, private_folder, read_kit, record_kit,
+                   runner_path, scratch_of)
+from .manifest import ROOT
+from .submissions import copy_files
 
 MAX_MESSAGES = 3  # failed checks shown per test (a loop over every vertex may fail hundreds)
 
@@ -42,87 +46,74 @@ SIGNAL_WORDS = {signal.SIGSEGV: "a segmentation fault (memory accessed out of bo
                 signal.SIGBUS: "a bus error", signal.SIGILL: "an illegal instruction"}
 
 
-class GradeError(Exception):
-    """The grader itself cannot run (not a student's fault)."""
-
-
 def say(message):
     print(message, file=sys.stderr, flush=True)
 
 
-def sync(source, dest):
-    """Makes dest's files those of source, writing only what changed (builds stay incremental);
-    dest's build folders are left alone."""
-    wanted = copy_files(source)
-    for name, data in wanted.items():
-        target = dest / name
-        if not (target.is_file() and target.read_bytes() == data):
-            target.parent.mkdir(parents=True, exist_ok=True)
-            target.write_bytes(data)
-        os.chmod(target, (source / name).stat().st_mode & 0o777)
-    for name in set(copy_files(dest)) - set(wanted):
-        (dest / name).unlink()
-
-
-def scratch_of(work):
-    """A submission's scratch folder: fixed for a kit (its build is configured there), and
-    apart from the kit and from everything else of the grader's, so that, where no namespace
-    hides the rest, the folders above it lead nowhere (/var/tmp/clothlab-grade/<kit's hash>)."""
-    top = Path("/var/tmp") if Path("/var/tmp").is_dir() else Path(tempfile.gettempdir())
-    return top / "clothlab-grade" / hashlib.sha256(str(work).encode()).hexdigest()[:12]
-
-
-def kit_copy(work):
-    """The folder where the copy is built and each submission is graded."""
-    return scratch_of(work) / "copy"
-
-
-def build_dir(work):
-    return kit_copy(work) / "build-grade"
-
-
-def prepare_from_teacher(work, box, jobs):
-    """The kit of this repository, generated and built; (lab, version)."""
-    generate_kit(work)
-    restore_base(work, box)
-    build_base(work, read_kit(work)[0], jobs)
-    return read_kit(work)
-
-
-def generate_kit(work):
-    """Generates the student copy of this repository into work/base/copy (only the files that
-    changed: its build stays incremental), its stubs into work/stubs, and work/manifest.json."""
+def prepare_kit(work, box, args):
+    """The kit, made (from this repository, or --kit --prepare: the bundle's) or, for --kit,
+    checked; (lab, version, Kit)."""
+    jobs = args.jobs
+    if args.kit and not args.prepare:
+        lab, version = read_kit(work)
+        kit = Kit(work, lab)
+        if kit.guards is None:
+            raise GradeError(f"{work}: the kit has no guards.json: make it with --prepare")
+        # The copy's build, brought up to date here (where it was made, nothing to do).
+        restore_base(work, box)
+        write_student_files(work, lab, {})
+        build_base(work, lab, jobs)
+        kit.verify()
+        return lab, version, kit
+    if not args.kit:
+        generate_kit(work)
+    lab, version = read_kit(work)
     try:
-        lab = lab_manifest.load()
-    except lab_manifest.ManifestError as error:
-        raise GradeError(str(error))
-    if not regions.scan_regions(ROOT):
-        raise GradeError(f"{ROOT}: no solution region in src/ or shaders/: is this the teacher's "
-                         "copy?")
-    with tempfile.TemporaryDirectory(prefix="clothlab-grade-") as tmp:
-        generated = Path(tmp) / "copy"
-        made = subprocess.run([sys.executable, str(ROOT / "scripts/make-student-version"),
-                               str(generated)], capture_output=True, text=True)
-        if made.returncode != 0:
-            raise GradeError("make-student-version failed:\n" + made.stderr)
-        files = copy_files(generated)
-        version = marker_version(files.get(MARKER_FILE)) or \
-            content_version(files, lab.student_files)
-        shutil.rmtree(work / "stubs", ignore_errors=True)
-        for name in lab.student_files:
-            (work / "stubs" / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copyfile(generated / name, work / "stubs" / name)
-        (work / "manifest.json").write_text(json.dumps({"version": version, **lab.to_json()},
-                                                       indent=1) + "\n")
-        (work / "base" / "copy").mkdir(parents=True, exist_ok=True)
-        os.chmod(work / "base", 0o700)
-        sync(generated, work / "base" / "copy")
+        record = json.loads((work / "kit.json").read_text())
+    except (OSError, ValueError):
+        record = {}
+    if record.get("format") != KIT_FORMAT:
+        # A kit of an older grader: its build is not trusted (its checkers ran next to the
+        # submissions' code). Built again from nothing (ccache keeps it short).
+        shutil.rmtree(work / "base" / "copy" / "build-grade", ignore_errors=True)
+        for name in ("checkers", "guards.json", "kit.json", "mesa-cache"):
+            path = work / name
+            shutil.rmtree(path, ignore_errors=True) if path.is_dir() else \
+                path.unlink(missing_ok=True)
+    restore_base(work, box)
+    write_student_files(work, lab, {})
+    build_base(work, lab, jobs)
+    tests = make_checkers(work, lab)
+    warm_mesa_cache(work, tests)
+    # The tests that pass on the stubs (guards: they earn no points), run through the
+    # checkers just recorded.
+    (work / "guards.json").unlink(missing_ok=True)
+    record_kit(work, tests)
+    kit = Kit(work, lab)
+    restore_base(work, box)
+    stub_results = run_tests(work, kit, box, jobs, 600)
+    unstarted = [m for _, messages in stub_results.values() for m in messages
+                 if "could not be started" in m]
+    if unstarted:
+        raise GradeError("the stubs' runner cannot be started in the sandbox: " + unstarted[0])
+    guards = sorted(name for name, (status, _) in stub_results.items() if status == "passed")
+    (work / "guards.json").write_text(json.dumps(guards, indent=1) + "\n")
+    record_kit(work, tests)
+    made = Kit(work, lab)
+    made.seconds = kit.seconds  # (the stubs' run: the checkers' order for the first student)
+    return lab, version, made
 
 
 def restore_base(work, box):
-    """The scratch folder emptied, then the kit's copy and build put back there."""
+    """The scratch folder emptied, then the kit's copy and build put back there (root's), with
+    the folders a submission writes (its build's home, its unpacking's folder) and the
+    unpacking's program (root's, read-only)."""
     base = work / "base"
-    box.reset(base if (base / "copy").is_dir() else None)
+    box.reset(base if (base / "copy").is_dir() else None, own=("home", "unpack"))
+    tools = scratch_of(work) / "tools"
+    tools.mkdir(mode=0o755)
+    shutil.copyfile(Path(submissions.__file__).with_name("unpack.py"), tools / "unpack.py")
+    os.chmod(tools / "unpack.py", 0o644)
 
 
 def build_base(work, lab, jobs):
@@ -137,17 +128,59 @@ def build_base(work, lab, jobs):
     base.mkdir(mode=0o700)
     subprocess.run(["cp", "-a", str(kit_copy(work)), str(base / "copy")], check=True)
     subprocess.run(["chown", "-R", f"{os.geteuid()}:{os.getegid()}", str(base)], check=True)
+    subprocess.run(["chmod", "-R", "go-w", str(base)], check=True)
+
+
+# The grader's additions to the kit's build, for speed only (the build is the copy's own
+# otherwise): the headers that the student's files include, precompiled once for the library
+# that holds those files, so that a submission's build compiles only its own code (a few
+# seconds less per submission on two cores). CMake runs it after the copy's CMakeLists.txt.
+SPEED_CMAKE = """# Written by scripts/grade (clothlab_lab/grading.py): the kit's build only.
+include_guard(GLOBAL)
+cmake_language(DEFER DIRECTORY "${{CMAKE_SOURCE_DIR}}" CALL _clothlab_grade_headers)
+function(_clothlab_grade_headers)
+  if(TARGET {target})
+    target_precompile_headers({target} PRIVATE {headers})
+  endif()
+endfunction()
+"""
+STUDENT_LIBRARY = "clothlab_core"  # src/core's library: where the student's C++ files are
+
+
+def speed_options(work, lab, folder):
+    """The configure options of the kit's build that make a submission's build shorter: the
+    precompiled headers above, and the gold linker where it works (it links the runner in a
+    tenth of the default linker's time here)."""
+    headers = []
+    for name in lab.student_files:
+        if name.endswith(".cpp") and (work / "stubs" / name).is_file():
+            for line in (work / "stubs" / name).read_text(errors="replace").splitlines():
+                match = re.match(r"\s*#\s*include\s*([<\"][^>\"]+[>\"])", line)
+                if match and match.group(1) not in headers:
+                    headers.append(match.group(1))
+    script = folder / "grade-speed.cmake"
+    script.write_text(SPEED_CMAKE.format(target=STUDENT_LIBRARY, headers=" ".join(
+        h if h.startswith("<") else f"[[{h}]]" for h in headers)))
+    options = [f"-DCMAKE_PROJECT_INCLUDE={script}"]
+    with tempfile.TemporaryDirectory(prefix="clothlab-grade-ld-") as tmp:
+        tried = subprocess.run(["c++", "-fuse-ld=gold", "-x", "c++", "-", "-o", f"{tmp}/a"],
+                               input="int main() { return 0; }\n", capture_output=True,
+                               text=True)
+    if tried.returncode == 0:
+        options.append("-DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=gold")
+    return options
 
 
 def build_outside(work, lab, jobs):
     folder = build_dir(work)
     if not (folder / "CMakeCache.txt").exists():
+        folder.mkdir(parents=True, exist_ok=True)
         generator = ["-G", "Ninja"] if shutil.which("ninja") else []
-        # PRE_TEST: the test programs are listed when ctest runs on the stubs, never after a
-        # student's link (a student's program runs only in the sandbox).
+        # PRE_TEST: the test programs are listed when ctest runs, on the kit's build.
         configured = subprocess.run(
             ["cmake", "-S", str(kit_copy(work)), "-B", str(folder), *generator,
-             "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST"],
+             "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST",
+             *speed_options(work, lab, folder)],
             capture_output=True, text=True)
         if configured.returncode != 0:
             raise GradeError("cmake could not configure the student copy:\n" +
@@ -164,27 +197,21 @@ def build_command(work, lab, jobs, targets=None):
             *(targets or lab_targets(lab)), "--", *keep_going]
 
 
-def submission_targets(work, lab):
-    """What a submission's build makes: the runners, where tests/lab has them (the checkers,
-    built once with the kit, link no student code), else the question tests."""
-    runners = sorted({runner_of(p).name for p in (build_dir(work) / "tests" / "lab").glob(
-        "lab_q*_tests") if runner_of(p)})
-    return runners or lab_targets(lab)
-
-
 def build_submission(work, lab, box, jobs):
-    """Builds the student's files into the kit's copy, in the sandbox; (ok, output)."""
-    log = scratch_of(work) / "build.log"
-    home = scratch_of(work) / "home"
-    home.mkdir(exist_ok=True)
-    if box.root:
-        os.chown(home, box.uid, box.uid)
+    """Builds the student's files into the kit's copy, in the sandbox: only the runner, the
+    one program that links the student's code; (ok, output). The copy is the submission's to
+    write during its build only."""
+    copy, home = kit_copy(work), scratch_of(work) / "home"
+    log = work / "logs" / "build.log"
     limit = box.limits.build_seconds
-    with open(log, "wb") as out:
-        code, timed_out = box.run(build_command(work, lab, jobs, submission_targets(work, lab)),
-                                  limit,
-                                  confinement.environment(home), out, cwd=kit_copy(work),
-                                  cpu_seconds=limit)
+    box.grant(copy)
+    try:
+        with open(log, "wb") as out:
+            code, timed_out = box.run(build_command(work, lab, jobs, [RUNNER]), limit,
+                                      confinement.environment(home), out, cwd=copy,
+                                      writable=[copy, home], cpu_seconds=limit)
+    finally:
+        box.revoke(copy)
     output = confinement.read_written(log, 4 * confinement.MiB).decode("utf-8", "replace")
     if timed_out:
         return False, f"the build did not finish within {limit:g} s; stopped\n{output[-3000:]}"
@@ -194,90 +221,50 @@ def build_submission(work, lab, box, jobs):
     return code == 0, output
 
 
-def read_kit(work):
-    """(lab, version) of a prepared kit: the manifest as it was when the kit was made."""
-    try:
-        data = json.loads((work / "manifest.json").read_text())
-        return lab_manifest.parse(data, str(work / "manifest.json")), data["version"]
-    except (OSError, ValueError, KeyError, lab_manifest.ManifestError) as error:
-        raise GradeError(f"{work}: not a prepared kit ({error})")
-
-
-def lab_targets(lab):
-    return [q.target for q in lab.questions]
-
-
-def list_tests(work, lab):
-    """[(question, test name, [program, arguments...])] of the kit's build, from ctest."""
-    listing = subprocess.run(["ctest", "--test-dir", str(build_dir(work)), "--show-only=json-v1"],
-                             capture_output=True, text=True)
-    if listing.returncode != 0:
-        raise GradeError("ctest cannot list the question tests:\n" + listing.stderr[-2000:])
-    tests = []
-    for test in json.loads(listing.stdout).get("tests", []):
-        labels = [v for p in test.get("properties", []) if p["name"] == "LABELS"
-                  for v in p["value"]]
-        for label in labels:
-            if label.upper() in lab.ids:
-                tests.append((label.upper(), test["name"], test["command"]))
-    if not tests:
-        raise GradeError("the build lists no question test (labels q5 ... q13)")
-    return tests
+def checker_environment(home, runner, prefix):
+    """The environment of a checker (the grader's program): no path of the scratch but the
+    runner's, which it starts only through the sandbox's words (prefix)."""
+    return {"PATH": "/usr/local/bin:/usr/bin:/bin", "HOME": str(home), "LC_ALL": "C.UTF-8",
+            "LANG": "C.UTF-8", "GTEST_COLOR": "no", "CLOTHLAB_LAB_RUNNER": str(runner),
+            "CLOTHLAB_LAB_SANDBOX": json.dumps(prefix)}
 
 
 def warm_mesa_cache(work, tests):
-    """Mesa's shader cache of the kit (work/mesa-cache), made once by running the stubs' test
-    programs (the teacher's code) outside the sandbox: each submission's tests start from a
-    copy of it, so that they compile only the student's shaders, and Mesa never creates its
-    1.3 MB index under the tests' limit on file size."""
+    """Mesa's shader cache of the kit (work/mesa-cache), made once by running the kit's checkers
+    with the stubs' runner (the teacher's code, before any submission) outside the sandbox:
+    each submission's tests start from a copy of it, so that they compile only the student's
+    shaders, and Mesa never creates its 1.3 MB index under the tests' limit on file size."""
     cache = work / "mesa-cache"
     if (cache / "mesa_shader_cache" / "index").is_file():
         return
-    shutil.rmtree(cache, ignore_errors=True)
-    cache.mkdir(mode=0o700)
+    cache = private_folder(work, "mesa-cache")
     with tempfile.TemporaryDirectory(prefix="clothlab-grade-warm-") as tmp:
         env = confinement.environment(Path(tmp), kit_copy(work))
         env["XDG_CACHE_HOME"] = str(cache)
-        for program in sorted({command[0] for _, _, command in tests}):
+        for program in sorted({Path(command[0]).name for _, _, command in tests}):
             try:
-                subprocess.run([program, "--gtest_brief=1"], env=env, cwd=tmp, timeout=300,
-                               capture_output=True)
+                subprocess.run([work / "checkers" / program, "--gtest_brief=1"], env=dict(
+                    env, CLOTHLAB_LAB_RUNNER=str(runner_path(work))), cwd=tmp, timeout=300,
+                    capture_output=True)
             except subprocess.TimeoutExpired:
                 pass
 
 
-def runner_of(program):
-    """The runner that a question's checker starts (tests/lab: the checker lab_qN_tests holds
-    the assertions and links no student code; lab_runner, beside it, links the student's code
-    and hands back what it computed), else None (one program does both)."""
-    if not re.match(r"lab_q\d+_", Path(program).name):
-        return None
-    runner = Path(program).parent / "lab_runner"
-    return runner if runner.is_file() and os.access(runner, os.X_OK) else None
-
-
-def run_program(command, run_dir, number, box, output_limit, timeout, verdicts):
-    """Runs one test program; returns (kind, messages, cases): kind "ran" with cases
-    {GoogleTest name: (passed | failed, messages)}, else timeout | output | crashed, with
-    messages. A program that links the student's code runs as the submission, in the sandbox;
-    a checker runs as the grader, out of it, and starts its runner in the sandbox (the words
-    of CLOTHLAB_LAB_SANDBOX), so that the verdict is never in the student's process."""
-    runner = runner_of(command[0])
-    results = verdicts if runner else run_dir / "results"
-    xml_path = results / f"{number}.xml"
-    log_path = results / f"{number}.log"
-    command = command + [f"--gtest_output=xml:{xml_path}"]
-    # The shaders and assets the tests read: those of the submission's copy (its own shaders).
-    env = confinement.environment(run_dir / "home", run_dir.parent / "copy")
+def run_program(kit, program, filters, number, run, output_limit, timeout):
+    """Runs one checker (verified against the kit) on some of its tests; returns (kind,
+    messages, cases): kind "ran" with cases {GoogleTest name: (passed | failed, messages)}, else
+    timeout | output | crashed, with messages. The checker runs as the grader, out of the
+    sandbox, in a folder of the grader's; it starts the submission's runner in the sandbox (the
+    words of CLOTHLAB_LAB_SANDBOX) and reads back only numbers: the verdict is never in the
+    student's process, and is read only from what the checker wrote."""
+    verdicts, box = run["verdicts"], run["box"]
+    xml_path = verdicts / f"{number}.xml"
+    log_path = verdicts / f"{number}.log"
+    command = [kit.checker(program), "--gtest_filter=" + ":".join(filters),
+               f"--gtest_output=xml:{xml_path}"]
     with open(log_path, "wb") as log:
-        if runner:
-            env.update(CLOTHLAB_LAB_RUNNER=str(runner), CLOTHLAB_LAB_SANDBOX=json.dumps(
-                box.prefix(chdir=run_dir / "cwd")))
-            code, timed_out = box.run_outside(command, timeout, env, log, cwd=run_dir / "cwd",
-                                              file_size=output_limit)
-        else:
-            code, timed_out = box.run(command, timeout, env, log, cwd=run_dir / "cwd",
-                                      file_size=output_limit, cpu_seconds=int(timeout) + 2)
+        code, timed_out = box.run_outside(command, timeout, run["env"], log, cwd=verdicts,
+                                          file_size=output_limit)
     if timed_out:
         return "timeout", [f"did not finish within {timeout:g} s (an endless loop? a loop "
                            "whose end condition never holds?); stopped"], None
@@ -290,7 +277,7 @@ def run_program(command, run_dir, number, box, output_limit, timeout, verdicts):
     if code in (-signal.SIGXCPU, 128 + signal.SIGXCPU):
         return "timeout", [f"used more than {timeout:g} s of processor time; stopped"], None
     try:
-        root = ElementTree.fromstring(confinement.read_written(xml_path, output_limit))
+        root = ElementTree.fromstring(confinement.read_written(xml_path, 64 << 20))
     except ElementTree.ParseError:
         if code < 0 or code > 128:
             number_of_signal = -code if code < 0 else code - 128
@@ -313,25 +300,28 @@ def run_program(command, run_dir, number, box, output_limit, timeout, verdicts):
     return "ran", [], cases
 
 
-def run_tests(work, tests, box, jobs, budget):
-    """{test name: (status, messages)} for every test, as the submission, in a fresh folder of
-    its scratch. Each test program runs its tests at once; when it does not report (a loop, a
-    crash, a flood), each of its tests runs alone, so that the report says which."""
+def run_tests(work, kit, box, jobs, budget):
+    """{test name: (status, messages)} for every test of the kit: each checker runs its tests at
+    once (two checkers at a time with --jobs 2), each starting the submission's runner in the
+    sandbox, to which the copy is read-only and a fresh run/ folder (its working folder and
+    home) the one place to write. When a checker does not report (a loop, a crash, a flood),
+    each of its tests runs alone, so that the report says which."""
     limits = box.limits
     run_dir = scratch_of(work) / "run"
     shutil.rmtree(run_dir, ignore_errors=True)
-    verdicts = work / "verdicts"  # the checkers' results: out of the submission's reach
-    shutil.rmtree(verdicts, ignore_errors=True)
-    verdicts.mkdir(mode=0o700)
-    for sub in ("cwd", "home", "results"):
-        (run_dir / sub).mkdir(parents=True)
+    for sub in ("cwd", "home"):
+        (run_dir / sub).mkdir(parents=True, mode=0o700)
     if (work / "mesa-cache").is_dir():
         shutil.copytree(work / "mesa-cache", run_dir / "home" / ".cache", symlinks=False)
-    if box.root:
-        subprocess.run(["chown", "-R", f"{box.uid}:{box.uid}", str(run_dir)], check=True)
-    programs = {}  # the build's program -> [(test name, GoogleTest name)]
-    for _, name, command in tests:
-        programs.setdefault(Path(command[0]), []).append((name, gtest_filter(command)))
+    box.grant(run_dir)
+    verdicts = private_folder(work, "verdicts")
+    prefix = box.prefix(writable=[run_dir], readable=[kit_copy(work)], chdir=run_dir / "cwd",
+                        env=confinement.environment(run_dir / "home", kit_copy(work)))
+    run = {"box": box, "verdicts": verdicts,
+           "env": checker_environment(verdicts, runner_path(work), prefix)}
+    programs = {}  # checker -> [(test name, GoogleTest filter)]
+    for _, name, program, test_filter in kit.tests:
+        programs.setdefault(program, []).append((name, test_filter))
     started = time.monotonic()
     results = {}
     numbers = iter(range(1_000_000))
@@ -340,35 +330,42 @@ def run_tests(work, tests, box, jobs, budget):
         return time.monotonic() - started > budget
 
     def whole(program):
-        members = programs[program]
         if spent():
             return program, ("budget", [], None)
-        command = [str(program), "--gtest_filter=" + ":".join(f for _, f in members)]
-        return program, run_program(command, run_dir, next(numbers), box, limits.test_output,
-                                    2 * limits.test_seconds, verdicts)
+        began = time.monotonic()
+        result = run_program(kit, program, [f for _, f in programs[program]], next(numbers),
+                             run, limits.test_output, 2 * limits.test_seconds)
+        kit.seconds[program] = time.monotonic() - began
+        return program, result
 
     def alone(program, name, test_filter):
         if spent():
             return name, ("timeout", [f"not run: this submission's {budget:g} s for its tests "
                                       "were spent (by tests that did not finish)"])
-        kind, messages, cases = run_program(
-            [str(program), f"--gtest_filter={test_filter}"], run_dir, next(numbers), box,
-            limits.test_output, limits.test_seconds, verdicts)
+        kind, messages, cases = run_program(kit, program, [test_filter], next(numbers), run,
+                                            limits.test_output, limits.test_seconds)
         if kind == "ran" and test_filter in cases:
             return name, cases[test_filter]
         return name, (kind if kind != "ran" else "crashed", messages or ["did not report"])
 
-    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        again = []
-        for program, (kind, _, cases) in pool.map(whole, list(programs)):
-            members = programs[program]
-            if kind == "ran" and all(f in cases for _, f in members):
-                results.update({name: cases[f] for name, f in members})
-            else:
-                again += [(program, name, f) for name, f in members]
-        for name, result in pool.map(lambda item: alone(*item), again):
-            results[name] = result
-    box.end_all()  # nothing of the submission outlives its tests
+    try:
+        with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+            again = []
+            # The longest checkers first (as last measured): two at a time end together.
+            order = sorted(programs, key=lambda p: -kit.seconds.get(p, 0))
+            for program, (kind, _, cases) in pool.map(whole, order):
+                members = programs[program]
+                if kind == "ran" and all(f in cases for _, f in members):
+                    results.update({name: cases[f] for name, f in members})
+                else:
+                    again += [(program, name, f) for name, f in members]
+            for name, result in pool.map(lambda item: alone(*item), again):
+                results[name] = result
+    finally:
+        box.end_all()  # nothing of the submission outlives its tests
+    missing = [name for _, name, _, _ in kit.tests if name not in results]
+    if missing:
+        raise GradeError(f"the tests {', '.join(missing[:5])} have no result: a grader's error")
     # Paths as the student knows them: shaders/gpu_step.frag, not the scratch folder's.
     data = str(kit_copy(work)) + "/"
     return {name: (status, [m.replace(data, "") for m in messages])
@@ -390,10 +387,6 @@ def clean_message(message):
         lines = lines[3:]
     text = "\n".join(lines).strip()
     return text[:2000] + (" ..." if len(text) > 2000 else "")
-
-
-def gtest_filter(command):
-    return next((a.split("=", 1)[1] for a in command if a.startswith("--gtest_filter=")), "*")
 
 
 DIAGNOSTIC = re.compile(r"^(?P<file>[^\s:][^:]*):(?P<line>\d+):(?:\d+:)? (?:fatal )?error: ")
@@ -440,19 +433,43 @@ def files_with_errors(output, student_files):
 
 
 def write_student_files(work, lab, taken):
-    """The student's files (taken, else the stubs) into the kit's copy."""
+    """The student's files (taken, else the stubs) into the kit's copy (root's now: no
+    process of the submission's user lives, and no folder on the way may be a link)."""
     for name in lab.student_files:
         data = taken.get(name)
         if data is None:
             data = (work / "stubs" / name).read_bytes()
-        target = kit_copy(work) / name
-        if not (target.is_file() and target.read_bytes() == data):
-            target.write_bytes(data)
+        write_without_links(kit_copy(work), name, data)
+
+
+def write_without_links(folder, name, data):
+    """Writes folder/name, refusing a link anywhere on the way (each folder opened with
+    O_NOFOLLOW), and only when its bytes change (the build stays incremental)."""
+    fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW)
+    try:
+        parts = name.split("/")
+        for part in parts[:-1]:
+            inner = os.open(part, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW, dir_fd=fd)
+            os.close(fd)
+            fd = inner
+        try:
+            current = os.open(parts[-1], os.O_RDONLY | os.O_NOFOLLOW, dir_fd=fd)
+            with os.fdopen(current, "rb") as f:
+                if f.read() == data:
+                    return
+        except FileNotFoundError:
+            pass
+        out = os.open(parts[-1], os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_NOFOLLOW, 0o644,
+                      dir_fd=fd)
+        with os.fdopen(out, "wb") as f:
+            f.write(data)
+    finally:
+        os.close(fd)
 
 
 def score_question(question, tests, results, guards, points, partial):
     """(score, passed, total, failures [(test, messages, status)])."""
-    names = [name for q, name, _ in tests if q == question]
+    names = [name for q, name, *_ in tests if q == question]
     passed = [n for n in names if results[n][0] == "passed"]
     failures = [(n, results[n][1], results[n][0]) for n in names if results[n][0] != "passed"]
     if not partial or not names:
@@ -474,24 +491,24 @@ def short_name(test):
 
 def read_submission(work, lab, version, reference, submission, box):
     """({student file: bytes}, [notes]) of a submission: copied into the scratch folder as it
-    is (bounded), unpacked there by unpack.py in the sandbox, its student copy found."""
+    is (bounded), unpacked there by unpack.py in the sandbox (which sees only that folder and
+    the program), its student copy found."""
     scratch = scratch_of(work)
-    unpacked = scratch / "unpacked"
+    folder = scratch / "unpack"
+    unpacked = folder / "files"
     limits = box.limits
-    source, notes = submissions.stage(submission, scratch / "submission", limits)
-    shutil.copyfile(Path(submissions.__file__).with_name("unpack.py"), scratch / "unpack.py")
-    if box.root:
-        subprocess.run(["chown", "-R", f"{box.uid}:{box.uid}", str(scratch / "submission"),
-                        str(scratch / "unpack.py")], check=True)
-    log = scratch / "unpack.log"
+    source, notes = submissions.stage(submission, folder / "submission", limits)
+    box.grant(folder)
+    tool = scratch / "tools" / "unpack.py"
+    log = work / "logs" / "unpack.log"
     with open(log, "wb") as out:
         code, timed_out = box.run(
-            ["python3", "-I", "-S", str(scratch / "unpack.py"), str(source), str(unpacked),
+            ["python3", "-I", "-S", str(tool), str(source), str(unpacked),
              str(limits.submission), str(limits.entries), str(limits.student_file)],
-            120, confinement.environment(scratch), out, cwd=scratch,
-            file_size=limits.submission)  # (a repository's pack may be large; each file is cut)
+            120, confinement.environment(folder), out, cwd=folder, writable=[folder],
+            readable=[tool], file_size=limits.submission)  # (a pack may be large; each file is cut)
     said = confinement.read_written(log, 1 << 20).decode("utf-8", "replace").strip()
-    shutil.rmtree(scratch / "submission", ignore_errors=True)
+    shutil.rmtree(folder / "submission", ignore_errors=True)
     try:
         result = json.loads(said.splitlines()[-1])
     except (ValueError, IndexError):
@@ -507,17 +524,25 @@ def read_submission(work, lab, version, reference, submission, box):
     return taken, notes + found
 
 
-def grade_one(work, lab, version, reference, tests, guards, submission, name, args, box):
+def question_record(status, tests, output, score=0.0, passed=0, failures=()):
+    return {"score": score, "passed": passed, "tests": tests, "status": status,
+            "failures": list(failures), "output": output}
+
+
+def grade_one(work, lab, version, reference, kit, submission, name, args, box, notes=()):
     """A dict with everything known of one submission's grade."""
     started = time.monotonic()
     questions = lab.ids
     points = lab.points
-    record = {"name": name, "submission": submissions.printable(str(submission)), "notes": [],
-              "questions": {}, "build_error": None}
+    record = {"name": name, "submission": submissions.printable(str(submission["original"])),
+              "notes": list(notes), "questions": {}, "build_error": None}
+    kit.verify()  # the kit is the one made; else GradeError: the grader stops
     restore_base(work, box)  # nothing of the previous submission is left
     try:
-        taken, notes = read_submission(work, lab, version, reference, submission, box)
-        record["notes"] += notes
+        if submission.get("error"):
+            raise ValueError(submission["error"])
+        taken, found = read_submission(work, lab, version, reference, submission["source"], box)
+        record["notes"] += found
     except (ValueError, OSError) as error:
         taken = {}
         record["notes"].append(f"cannot be read: {submissions.printable(str(error))}")
@@ -525,8 +550,8 @@ def grade_one(work, lab, version, reference, tests, guards, submission, name, ar
         record["notes"].append("no student file found (" + ", ".join(lab.student_files)
                                + "): not a clothlab student copy? Every question gets 0")
         for q in questions:
-            record["questions"][q] = {"score": 0.0, "passed": 0, "tests": 0, "status": "missing",
-                                      "failures": [], "output": "no student file was handed in"}
+            record["questions"][q] = question_record("missing", kit.count(q),
+                                                     "no student file was handed in")
         return finish(record, started, points)
 
     write_student_files(work, lab, taken)
@@ -550,21 +575,21 @@ def grade_one(work, lab, version, reference, tests, guards, submission, name, ar
             record["build_error"] = first_error(output, kit_copy(work))
             record["notes"].append("the build fails: every question gets 0")
             for q in questions:
-                record["questions"][q] = {"score": 0.0, "passed": 0, "tests": 0,
-                                          "status": "build error", "failures": [],
-                                          "output": "does not compile:\n" + record["build_error"]}
+                record["questions"][q] = question_record(
+                    "build error", kit.count(q), "does not compile:\n" + record["build_error"])
             return finish(record, started, points)
     tests_started = time.monotonic()
     record["build_seconds"] = round(tests_started - build_started, 1)
-    results = run_tests(work, tests, box, args.jobs, box.limits.test_budget)
+    results = run_tests(work, kit, box, args.jobs, box.limits.test_budget)
     record["test_seconds"] = round(time.monotonic() - tests_started, 1)
     for q in questions:
-        score, passed, total, failures = score_question(q, tests, results, guards,
+        score, passed, total, failures = score_question(q, kit.tests, results, kit.guards,
                                                         points[q], lab.partial_credit)
+        if total != kit.count(q):
+            raise GradeError(f"{q}: {total} tests graded, the kit has {kit.count(q)}")
         if q in broken:
-            record["questions"][q] = {"score": 0.0, "passed": 0, "tests": total,
-                                      "status": "build error", "failures": [],
-                                      "output": "does not compile:\n" + broken[q]}
+            record["questions"][q] = question_record("build error", total,
+                                                     "does not compile:\n" + broken[q])
             continue
         status = "done" if passed == total else "to do"
         lines = [f"{passed}/{total} tests passed: {score:g} of {points[q]:g} points"]
@@ -572,10 +597,9 @@ def grade_one(work, lab, version, reference, tests, guards, submission, name, ar
             lines.append(f"\nFAILED {short_name(test)}" + ("" if kind == "failed" else
                                                             f" ({kind})") + ":")
             lines += ["  " + m.replace("\n", "\n  ") for m in messages]
-        record["questions"][q] = {"score": score, "passed": passed, "tests": total,
-                                  "status": status, "output": "\n".join(lines),
-                                  "failures": [(short_name(t), m[0] if m else "", kind)
-                                               for t, m, kind in failures]}
+        record["questions"][q] = question_record(
+            status, total, "\n".join(lines), score, passed,
+            [(short_name(t), m[0] if m else "", kind) for t, m, kind in failures])
         if any(kind != "failed" for _, _, kind in failures):
             kinds = sorted({kind for _, _, kind in failures if kind != "failed"})
             record["notes"].append(f"{q}: tests that " + " / ".join(
@@ -585,6 +609,9 @@ def grade_one(work, lab, version, reference, tests, guards, submission, name, ar
 
 
 def finish(record, started, points):
+    """The record's total and time; every text in it made valid in every output (junit.xml,
+    results.json, the report): control characters written out, never passed on."""
+    reports.clean_record(record)
     record["score"] = round(sum(q["score"] for q in record["questions"].values()), 2)
     record["max_score"] = sum(points.values())
     record["seconds"] = round(time.monotonic() - started, 1)
@@ -603,6 +630,32 @@ def progress(k, n, name, started, durations):
         say(line)
 
 
+def stage_privately(work, entries, box):
+    """In the fallback (no namespace hides the file system), before the first submission runs:
+    each submission copied into work/staged (root's, 0700; bounded as in the scratch), graded
+    from there; and a class whose submissions the submissions' user could read where they are
+    (another student's code, its path on the grader's command line, /proc/PID/cmdline) is
+    refused."""
+    if len(entries) > 1:
+        open_ = [e["original"] for e in entries
+                 if confinement.readable_by_submission(box, e["original"])]
+        if open_:
+            raise GradeError(
+                "bubblewrap cannot run here, and the submissions' user could read the "
+                f"submissions where they are ({submissions.printable(str(open_[0]))}"
+                + (f" and {len(open_) - 1} more" if len(open_) > 1 else "") + "): every "
+                "student's code could read the others'. Close their folder to other users "
+                "(chmod o-rwx), or grade where bubblewrap runs")
+    staged = private_folder(work, "staged")
+    for k, entry in enumerate(entries):
+        try:
+            entry["source"], notes = submissions.stage(entry["original"], staged / f"{k:05d}",
+                                                       box.limits)
+            entry["notes"] = notes
+        except (ValueError, OSError) as error:
+            entry["error"] = str(error)
+
+
 def grade_class(args):
     """Grades args.submissions into args.out (or only prepares the kit); the exit status.
     args: the command line of scripts/grade."""
@@ -613,6 +666,7 @@ def grade_class(args):
     try:
         work = (args.kit or args.work).resolve()
         work.mkdir(parents=True, exist_ok=True)
+        os.chmod(work, 0o700)  # the kit, the staged submissions, the verdicts: the grader's
         lock = open(work / ".lock", "w")
         try:
             fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -628,96 +682,140 @@ def grade_class(args):
             box = confinement.Sandbox(scratch_of(work), limits, enabled=not args.no_sandbox)
         except confinement.SandboxError as error:
             raise GradeError(str(error))
-        if args.kit:
-            lab, version = read_kit(work)
-            restore_base(work, box)
-            write_student_files(work, lab, {})
-            build_base(work, lab, args.jobs)
-        else:
-            lab, version = prepare_from_teacher(work, box, args.jobs)
-        if box.kind == "user" and not args.kit and \
+        for name in ("logs", "verdicts"):
+            private_folder(work, name)
+        lab, version, kit = prepare_kit(work, box, args)
+        # (with --kit too: this script's own path, on the grader's command line, names the tree)
+        if box.kind == "user" and (ROOT / "docs/answers.md").exists() and \
                 confinement.readable_by_submission(box, ROOT / "docs/answers.md"):
             raise GradeError(f"bubblewrap cannot run here, and the submissions' user could read "
                              f"the teacher's files ({ROOT / 'docs/answers.md'}): close the "
                              "repository to other users (chmod o-rwx), or grade with the "
-                             "Gradescope bundle's kit (--kit), which holds no solution")
+                             "Gradescope bundle's own grader (clothlab-grade/grade --kit), "
+                             "which holds no solution")
         if args.points:
             try:
                 lab = lab_manifest.with_points(lab, args.points)
             except lab_manifest.ManifestError as error:
                 raise GradeError(str(error))
-        tests = list_tests(work, lab)
-        warm_mesa_cache(work, tests)
         say(f"grade: the student copy is built ({time.monotonic() - started:.0f} s), "
-            f"{len(tests)} question tests; sandbox: {box.description}")
-        # The tests that pass on the stubs (guards: they earn no points), found once for a kit:
-        # --prepare keeps them in guards.json (the Gradescope image), each submission reads it.
-        guards_file = work / "guards.json"
-        if args.kit and guards_file.is_file() and not args.prepare:
-            guards = set(json.loads(guards_file.read_text()))
-        else:
-            restore_base(work, box)
-            stub_results = run_tests(work, tests, box, args.jobs, 600)
-            guards = {name for name, (status, _) in stub_results.items() if status == "passed"}
-            if args.kit:
-                guards_file.write_text(json.dumps(sorted(guards), indent=1) + "\n")
+            f"{len(kit.tests)} question tests; sandbox: {box.description}")
         if args.prepare:
-            if args.kit:
-                say(f"grade: {len(guards)} tests pass on the stubs (guards), kept in "
-                    f"{guards_file}")
+            say(f"grade: {len(kit.guards)} tests pass on the stubs (guards), kept in "
+                f"{work / 'guards.json'}; the kit's files recorded in {work / 'kit.json'}")
             return 0
         reference = {n: d for n, d in copy_files(work / "base" / "copy").items()
                      if n not in lab.student_files}
-
-        args.out.mkdir(parents=True, exist_ok=True)
-        if box.kind == "user":
-            os.chmod(args.out, 0o700)  # no submission reads the others' grades
-        records, durations, used = [], [], set()
-        for k, submission in enumerate(args.submissions, 1):
-            name = submissions.unique_name(Path(args.name[k - 1]) if k <= len(args.name)
-                                           else submission, used)
-            began = time.monotonic()
-            try:
-                record = grade_one(work, lab, version, reference, tests, guards,
-                                   submission.absolute(), name, args, box)
-            except Exception as error:  # noqa: BLE001 (whatever a submission holds, the batch goes on)
-                record = {"name": name, "submission": submissions.printable(str(submission)),
-                          "build_error": None,
-                          "notes": [f"could not be graded: {type(error).__name__}: "
-                                    f"{submissions.printable(str(error))}"],
-                          "questions": {q: {"score": 0.0, "passed": 0, "tests": 0,
-                                            "status": "missing", "failures": [],
-                                            "output": "could not be graded"}
-                                        for q in lab.ids}}
-                record = finish(record, began, lab.points)
-            durations.append(time.monotonic() - began)
-            records.append(record)
-            write_results(args, record, lab, version, box.description)
-            if not sys.stderr.isatty():
-                say(f"grade: {name}: {record['score']:g}/{record['max_score']:g} "
-                    f"({durations[-1]:.0f} s)")
-            progress(k, len(args.submissions), name, started, durations)
-        reports.write_csv(args.out / "grades.csv", records, lab)
-        reports.write_report(args.out / "report.html", records, lab, version, box.description,
-                             time.monotonic() - started)
-        say(f"grade: {len(records)} submissions graded in {time.monotonic() - started:.0f} s: "
-            f"{args.out / 'grades.csv'}, {args.out / 'report.html'}")
-        return 0
+        used = set()
+        entries = [{"name": submissions.unique_name(Path(args.name[k]) if k < len(args.name)
+                                                     else submission, used),
+                    "original": submission.absolute(), "source": submission.absolute(),
+                    "notes": []} for k, submission in enumerate(args.submissions)]
+        try:
+            if box.kind == "user":
+                stage_privately(work, entries, box)
+            return grade_entries(args, work, lab, version, kit, box, entries, reference, started)
+        finally:
+            shutil.rmtree(work / "staged", ignore_errors=True)
     except GradeError as error:
         say(f"grade: {error}")
         return 1
     finally:
         if box is not None:
-            box.release()
+            try:
+                box.release()
+            except confinement.SandboxError as error:
+                say(f"grade: {error}")
+
+
+def grade_entries(args, work, lab, version, kit, box, entries, reference, started):
+    """Grades each submission in turn, writing its results as it goes, then the class's; the
+    exit status. The class's outputs are written whatever happens to one student's, and also
+    when the grader stops (a GradeError), saying so in each."""
+    args.out.mkdir(parents=True, exist_ok=True)
+    if box.kind == "user":
+        os.chmod(args.out, 0o700)  # no submission reads the others' grades
+    (args.out / "students").mkdir(exist_ok=True)
+    records, durations, stopped, unwritten = [], [], None, 0
+    try:
+        for k, entry in enumerate(entries, 1):
+            name = entry["name"]
+            began = time.monotonic()
+            try:
+                record = grade_one(work, lab, version, reference, kit, entry, name, args, box,
+                                   entry["notes"])
+            except GradeError:
+                raise
+            except confinement.SandboxError as error:
+                raise GradeError(str(error))
+            except Exception as error:  # noqa: BLE001 (whatever a submission holds, go on)
+                record = {"name": name, "build_error": None,
+                          "submission": submissions.printable(str(entry["original"])),
+                          "notes": [f"could not be graded: {type(error).__name__}: "
+                                    f"{submissions.printable(str(error))}"],
+                          "questions": {q: question_record("missing", kit.count(q),
+                                                           "could not be graded")
+                                        for q in lab.ids}}
+                record = finish(record, began, lab.points)
+            durations.append(time.monotonic() - began)
+            records.append(record)
+            try:
+                write_results(args, record, lab, version, box.description)
+            except OSError as error:
+                unwritten += 1
+                record["notes"].append(f"its results.json and junit.xml could not be written: "
+                                       f"{submissions.printable(str(error))}")
+                say(f"grade: {name}: the results could not be written: {error}")
+            if not sys.stderr.isatty():
+                say(f"grade: {name}: {record['score']:g}/{record['max_score']:g} "
+                    f"({durations[-1]:.0f} s)")
+            progress(k, len(entries), name, started, durations)
+    except GradeError as error:
+        stopped = f"the grader stopped after {len(records)} of {len(entries)} submissions: " \
+                  f"{error}"
+        for entry in entries[len(records):]:
+            records.append(not_graded(entry, lab, stopped))
+        raise
+    finally:
+        written = write_class_outputs(args, records, lab, version, box.description,
+                                      time.monotonic() - started, stopped)
+    say(f"grade: {len(records)} submissions graded in {time.monotonic() - started:.0f} s: "
+        f"{args.out / 'grades.csv'}, {args.out / 'report.html'}; each student's in "
+        f"{args.out / 'students'}")
+    return 0 if written and not unwritten else 1
+
+
+def not_graded(entry, lab, why):
+    record = {"name": entry["name"], "submission": submissions.printable(str(entry["original"])),
+              "build_error": None, "graded": False, "notes": [f"NOT GRADED: {why}"],
+              "questions": {q: question_record("not graded", 0, "not graded") for q in lab.ids}}
+    return finish(record, time.monotonic(), lab.points)
+
+
+def write_class_outputs(args, records, lab, version, description, elapsed, stopped):
+    """grades.csv and report.html, each on its own: one that cannot be written costs not the
+    other; True when both were."""
+    written = True
+    for name, write in (("grades.csv", lambda p: reports.write_csv(p, records, lab, stopped)),
+                        ("report.html", lambda p: reports.write_report(
+                            p, records, lab, version, description, elapsed, stopped))):
+        try:
+            write(args.out / name)
+        except OSError as error:
+            written = False
+            say(f"grade: {args.out / name} could not be written: {error}")
+    return written
 
 
 def write_results(args, record, lab, version, confinement):
-    folder = args.out / record["name"]
+    """The student's results.json and junit.xml, in --out/students/NAME/ (a name a student
+    chooses can never be that of a class output), and --gradescope-results if given."""
+    folder = args.out / "students" / record["name"]
     folder.mkdir(parents=True, exist_ok=True)
     results = reports.gradescope_results(record, lab, version, confinement)
     text = json.dumps(results, indent=1) + "\n"
     (folder / "results.json").write_text(text)
-    (folder / "junit.xml").write_text(reports.junit_xml(record, lab), errors="replace")
+    (folder / "junit.xml").write_text(reports.junit_xml(record, lab))
     if args.gradescope_results:
         args.gradescope_results.parent.mkdir(parents=True, exist_ok=True)
         args.gradescope_results.write_text(text)

@@ -46,17 +46,18 @@ class RegionError(Exception):
 
 
 def project_files(root):
-    """The project's files: what git tracks or would track (not ignored), else every file."""
+    """The project's files: what git tracks (its index), never a walk of the folder: a build,
+    a compiler's cache (.ccache/), an object file or any other untracked file of the teacher's
+    checkout stays out of the student copy and the Gradescope bundle, ignored or not. A new
+    file of the teacher's joins the copy once `git add`ed. RegionError outside a git checkout."""
     try:
-        out = subprocess.run(
-            ["git", "-C", str(root), "ls-files", "-z", "--cached", "--others",
-             "--exclude-standard"], check=True, capture_output=True).stdout
-        names = sorted({n for n in out.decode().split("\0") if n})
-    except (OSError, subprocess.CalledProcessError):
-        names = sorted(str(p.relative_to(root)) for p in root.rglob("*")
-                       if p.is_file() and not any(part.startswith(("build", ".git"))
-                                                  for part in p.relative_to(root).parts))
-    return [n for n in names if (root / n).is_file()]
+        out = subprocess.run(["git", "-C", str(root), "ls-files", "-z", "--cached"], check=True,
+                             capture_output=True).stdout
+    except (OSError, subprocess.CalledProcessError) as error:
+        raise RegionError(f"{root}: not a git checkout (the student copy is made from what git "
+                          f"tracks): {getattr(error, 'stderr', b'') or error}")
+    names = sorted({n for n in out.decode("utf-8", "surrogateescape").split("\0") if n})
+    return [n for n in names if (root / n).is_file() and not (root / n).is_symlink()]
 
 
 def enclosing_function(lines, index):

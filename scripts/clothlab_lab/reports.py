@@ -7,6 +7,7 @@ import json
 import re
 import subprocess
 import time
+import urllib.parse
 import xml.etree.ElementTree as ElementTree
 from collections import Counter
 
@@ -96,6 +97,35 @@ def question_title(lab, q):
     return lab.question(q).title
 
 
+# What no output may carry as it is: the terminal's colour sequences, then the characters that
+# XML 1.0 forbids (C0 controls but tab and newline; lone surrogates, from names that are not
+# UTF-8; U+FFFE, U+FFFF), DEL and the C1 controls. A control byte in a compiler's error must not
+# make junit.xml unreadable: it is written out as \xNN.
+TERMINAL_SEQUENCE = re.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]")
+NOT_TEXT = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\ud800-\udfff\ufffe\uffff]")
+
+
+def clean_text(text):
+    """text as every output can hold it: terminal sequences dropped, a carriage return made a
+    line's end, every other control character written out (\x07)."""
+    text = TERMINAL_SEQUENCE.sub("", str(text)).replace("\r\n", "\n").replace("\r", "\n")
+    return NOT_TEXT.sub(lambda m: f"\\x{ord(m.group()):02x}" if ord(m.group()) < 0x100 else
+                        "\ufffd", text)
+
+
+def clean_record(value):
+    """Every text of a record (notes, outputs, messages, names), cleaned in place; returns it."""
+    if isinstance(value, dict):
+        for key, item in value.items():
+            value[key] = clean_record(item)
+        return value
+    if isinstance(value, list):
+        return [clean_record(item) for item in value]
+    if isinstance(value, tuple):
+        return tuple(clean_record(item) for item in value)
+    return clean_text(value) if isinstance(value, str) else value
+
+
 def headline(message):
     """The line of a failure that says what is wrong in the handout's words ('Q8: ...')."""
     lines = message.splitlines()
@@ -133,6 +163,7 @@ def gradescope_results(record, lab, version, confinement=""):
 
 
 def junit_xml(record, lab):
+    record = clean_record(json.loads(json.dumps(record)))  # (a copy: valid XML whatever it held)
     points = lab.points
     suites = ElementTree.Element("testsuites", name=f"clothlab {record['name']}")
     total = failed = 0
@@ -170,15 +201,19 @@ def spreadsheet_text(value):
     return "'" + text if text[:1] in ("=", "+", "-", "@", "\t", "\r") else text
 
 
-def write_csv(path, records, lab):
+def write_csv(path, records, lab, stopped=None):
+    """One row per student; a submission that the grader stopped before has empty scores and
+    says why in its notes."""
     questions = list(lab.ids)
     with open(path, "w", newline="") as out:
         writer = csv.writer(out)
         writer.writerow(["student", *questions, "total", "max", "notes"])
         for r in records:
+            graded = r.get("graded", True)
             writer.writerow([spreadsheet_text(r["name"]),
-                             *(f"{r['questions'][q]['score']:g}" for q in questions),
-                             f"{r['score']:g}", f"{r['max_score']:g}",
+                             *(f"{r['questions'][q]['score']:g}" if graded else ""
+                               for q in questions),
+                             f"{r['score']:g}" if graded else "", f"{r['max_score']:g}",
                              spreadsheet_text(" | ".join(r["notes"]))])
 
 
@@ -190,21 +225,29 @@ th { background: #f0f0f0; } td.num { text-align: right; font-variant-numeric: ta
 td.full { background: #c8f0c8; } td.part { background: #fbe7a8; } td.zero { background: #f6c4c4; }
 td.err { background: #d9d9d9; } td.notes { font-size: 12px; color: #555; max-width: 520px; }
 .bar { display: inline-block; height: 10px; background: #4a8; vertical-align: middle; }
-.meta { color: #666; } pre { white-space: pre-wrap; margin: 2px 0; font-size: 12px; }
+.meta { color: #666; } .stopped { color: #a00; } pre { white-space: pre-wrap; margin: 2px 0; font-size: 12px; }
 ol { margin: 4px 0 12px; }
 """
 
 
-def write_report(path, records, lab, version, sandbox, elapsed):
+def student_link(name, file):
+    """The relative link to a student's own output (--out/students/NAME/FILE)."""
+    return "students/" + urllib.parse.quote(name) + "/" + file
+
+
+def write_report(path, records, lab, version, sandbox, elapsed, stopped=None):
     questions = list(lab.ids)
     points = lab.points
     e = html.escape
     out = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
            "<title>clothlab: grades of the class</title>", f"<style>{REPORT_STYLE}</style>",
-           "</head><body>", "<h1>clothlab: grades of the class</h1>",
-           f"<p class='meta'>{len(records)} submissions, graded {time.strftime('%Y-%m-%d %H:%M')} "
-           f"in {elapsed:.0f} s; copy version {e(version)}; sandbox: {e(sandbox)}</p>",
-           "<h2>The class</h2>", "<table id='class'><tr><th>student</th>"]
+           "</head><body>", "<h1>clothlab: grades of the class</h1>"]
+    if stopped:
+        out.append(f"<p class='stopped'><b>Grading stopped:</b> {e(clean_text(stopped))}</p>")
+    out += [f"<p class='meta'>{len(records)} submissions, graded "
+            f"{time.strftime('%Y-%m-%d %H:%M')} in {elapsed:.0f} s; copy version {e(version)}; "
+            f"sandbox: {e(sandbox)}</p>",
+            "<h2>The class</h2>", "<table id='class'><tr><th>student</th>"]
     out += [f"<th title='{e(question_title(lab, q))}'>{q} ({points[q]:g})</th>"
             for q in questions]
     out.append(f"<th>total ({sum(points.values()):g})</th><th>notes</th></tr>")
@@ -212,13 +255,17 @@ def write_report(path, records, lab, version, sandbox, elapsed):
         out.append(f"<tr><td>{e(r['name'])}</td>")
         for q in questions:
             info = r["questions"][q]
+            if not r.get("graded", True):
+                out.append("<td class='num err'>-</td>")
+                continue
             kind = ("err" if info["status"] in ("build error", "missing") else
                     "full" if info["score"] >= points[q] else "zero" if info["score"] == 0
                     else "part")
             label = "build" if info["status"] == "build error" else f"{info['score']:g}"
             out.append(f"<td class='num {kind}' title='{info['passed']}/{info['tests']} tests'>"
                        f"{label}</td>")
-        out.append(f"<td class='num'>{r['score']:g}</td><td class='notes'>"
+        total = f"{r['score']:g}" if r.get("graded", True) else "-"
+        out.append(f"<td class='num'>{total}</td><td class='notes'>"
                    f"{'<br>'.join(e(n) for n in r['notes'])}</td></tr>")
     out.append("</table>")
     out.append("<p class='meta'>Green: every test passes; yellow: some; red: none; grey: "
@@ -264,6 +311,10 @@ def write_report(path, records, lab, version, sandbox, elapsed):
     for r in records:
         out.append(f"<details><summary>{e(r['name'])}: {r['score']:g} / {r['max_score']:g}"
                    f"</summary>")
+        if r.get("graded", True):
+            out.append("<p class='meta'>" + ", ".join(
+                f"<a href='{e(student_link(r['name'], f))}'>{f}</a>"
+                for f in ("results.json", "junit.xml")) + "</p>")
         if r["notes"]:
             out.append("<pre>" + e("\n".join(r["notes"])) + "</pre>")
         for q, info in r["questions"].items():

@@ -1,20 +1,22 @@
 """Where a submission's bytes are handled: unpacked, compiled, linked and run.
 
-Everything runs in the submission's scratch folder (the only place it may write, emptied before
-the next submission), as an unprivileged user with no capability, within the limits of LIMITS.
-Where bubblewrap works it also runs in its own namespaces: no network, no other process, and a
-file system of /usr, the few /etc files the compiler and Mesa read, the scratch folder and a
-small /tmp: no teacher tree, no other submission, no grades, no host socket. Where it does not
-(Docker's default seccomp profile: Gradescope, many CI containers), the unprivileged user, the
-limits and the private scratch still hold, and the grader's own folders are closed to that
-user (say() reports which confinement held).
+Everything runs in the submission's scratch folder, as an unprivileged user with no capability,
+within the limits of LIMITS. The scratch's top folder is root's: each step gets only the
+subfolders it needs, writable or read-only (the build writes copy/, the tests only run/, to
+which copy/ is read-only). Where bubblewrap works each step also runs in its own namespaces: no
+network, no other process, and a file system of /usr, the few /etc files the compiler and Mesa
+read, those subfolders and a small /tmp: no teacher tree, no other submission, no grades, no
+host socket, not even the rest of the scratch. Where it does not (Docker's default seccomp
+profile: Gradescope, many CI containers), the unprivileged user, the limits, the file modes and
+the private scratch still hold, and the grader's own folders are closed to that user (say()
+reports which confinement held). Every process of that user ends after each step.
 """
 import fcntl
-import json
 import os
 import resource
 import shutil
 import signal
+import stat
 import subprocess
 import tempfile
 import time
@@ -148,9 +150,9 @@ class Sandbox:
         self.sized = False  # the scratch is a tmpfs of limits.scratch bytes
         self.cgroup = None
         self.kind, self.description = "none", "none (--no-sandbox): the tests run as the grader"
+        self.prepare_scratch()
         if not enabled:
             return
-        self.prepare_scratch()
         bwrap_says = self.try_bubblewrap()
         if bwrap_says is None:
             self.kind = "bubblewrap"
@@ -181,20 +183,23 @@ class Sandbox:
 
     def prepare_scratch(self):
         """Makes the scratch folder, as a tmpfs of limits.scratch bytes where root may mount
-        one, reachable by the submission's user and by nobody else."""
+        one. Its top folder is root's (the submission's user may pass through it, never list,
+        rename or replace what is there): reset() makes the subfolders a step needs."""
         self.scratch.parent.mkdir(mode=0o711, parents=True, exist_ok=True)
-        self.scratch.mkdir(mode=0o700, exist_ok=True)
+        self.scratch.mkdir(mode=0o711, exist_ok=True)
         if self.root:
-            # The submission's user reaches its scratch folder: traverse, never list.
+            os.chown(self.scratch.parent, 0, 0)
             os.chmod(self.scratch.parent, 0o711)
             if not os.path.ismount(self.scratch):
                 mounted = subprocess.run(["mount", "-t", "tmpfs", "-o",
-                                          f"size={self.limits.scratch},mode=0700,nosuid,nodev",
+                                          f"size={self.limits.scratch},mode=0711,nosuid,nodev",
                                           "clothlab-scratch", str(self.scratch)],
                                          capture_output=True)
                 self.sized = mounted.returncode == 0
             else:
                 self.sized = True
+            os.chown(self.scratch, 0, 0)
+            os.chmod(self.scratch, 0o711)
 
     def release(self):
         self.reset(None)
@@ -203,10 +208,13 @@ class Sandbox:
         if self.sized and os.path.ismount(self.scratch):
             subprocess.run(["umount", "--lazy", str(self.scratch)], capture_output=True)
 
-    def reset(self, base):
-        """Ends every process of the submission's user, empties the scratch folder and, if base
-        is given, copies it there (the kit's copy and its build) for the submission's user."""
+    def reset(self, base, own=()):
+        """Ends every process of the submission's user, removes what it left in the machine's
+        shared places (the fallback), empties the scratch folder and, if base is given, copies
+        it there (the kit's copy and its build, root's: read-only to the submission's user).
+        Then makes each folder of `own` (names under the scratch) empty and the submission's."""
         self.end_all()
+        self.remove_leftovers()
         for child in self.scratch.iterdir() if self.scratch.exists() else ():
             if child.is_dir() and not child.is_symlink():
                 shutil.rmtree(child, ignore_errors=True)
@@ -215,38 +223,90 @@ class Sandbox:
         if base is not None:
             # cp keeps the times: the build stays incremental.
             subprocess.run(["cp", "-a", f"{base}/.", str(self.scratch)], check=True)
+        if self.root:  # (cp gave it base's owner and mode)
+            os.chown(self.scratch, 0, 0)
+            os.chmod(self.scratch, 0o711)
+        for name in own:
+            folder = self.scratch / name
+            folder.mkdir(mode=0o700)
+            self.grant(folder)
+
+    def grant(self, folder):
+        """folder and all it holds become the submission's user's (to write)."""
         if self.root:
-            subprocess.run(["chown", "-R", f"{self.uid}:{self.uid}", str(self.scratch)],
-                           check=True)
-            os.chmod(self.scratch, 0o700)
+            subprocess.run(["chown", "-R", f"{self.uid}:{self.uid}", str(folder)], check=True)
+
+    def revoke(self, folder):
+        """folder and all it holds become root's again, and read-only to every other user
+        (after the build: the tests read the copy, they never change it). Every process of the
+        submission's user has ended first, so that nothing it holds open writes on."""
+        self.end_all()
+        if self.root:
+            subprocess.run(["chown", "-R", "0:0", str(folder)], check=True)
+            subprocess.run(["chmod", "-R", "go-w", str(folder)], check=True)
 
     def end_all(self):
         """Every process of the submission's user ends (a compiler that outlived its build, a
-        fork left behind): kill(-1) as that user signals exactly its processes."""
+        daemon that forked twice and left its session and its cgroup): kill(-1) as that user
+        signals exactly its processes, again until none is left. SandboxError when some are
+        still there after 10 s (a grader that cannot end them must not go on)."""
         if self.cgroup:
             self.cgroup.end_all()
-        if self.root and self.kind != "none":
+        if not self.root or self.kind == "none":
+            return
+        deadline = time.monotonic() + 10
+        while True:
+            left = processes_of(self.uid)
+            if not left:
+                return
+            if time.monotonic() > deadline:
+                raise SandboxError(f"processes of the submissions' user {self.uid} are still "
+                                   f"there after 10 s of SIGKILL: {left[:10]}")
+            # The shell's own kill: procps may be missing (a minimal container).
             subprocess.run(["setpriv", f"--reuid={self.uid}", f"--regid={self.uid}",
-                            "--clear-groups", "--", "kill", "-KILL", "-1"], capture_output=True)
-            for _ in range(40):  # gone, not only signalled
-                if subprocess.run(["pgrep", "-u", str(self.uid)],
-                                  capture_output=True).returncode != 0:
-                    break
-                time.sleep(0.05)
+                            "--clear-groups", "--", "/bin/sh", "-c", "kill -9 -1"],
+                           capture_output=True)
+            time.sleep(0.02)
+
+    def remove_leftovers(self):
+        """In the fallback, the submissions share their user and the machine's /tmp, /var/tmp,
+        /dev/shm and System V IPC: what one left there (a file, a shared memory segment) is
+        removed before the next one runs, so that nothing of one reaches another. (Bubblewrap
+        gives each its own /tmp, /dev and IPC namespace.)"""
+        if self.kind != "user" or not self.root:
+            return
+        for top in ("/tmp", "/var/tmp", "/dev/shm"):
+            remove_owned(Path(top), self.uid, depth=2)
+        for kind, flag, column in (("shm", "-m", 7), ("sem", "-s", 4), ("msg", "-q", 7)):
+            try:
+                rows = Path(f"/proc/sysvipc/{kind}").read_text().splitlines()[1:]
+            except OSError:
+                continue
+            for row in rows:
+                fields = row.split()
+                if len(fields) > column and fields[column] == str(self.uid):
+                    subprocess.run(["ipcrm", flag, fields[1]], capture_output=True)
 
     # -- running a command as the submission ---------------------------------------------
 
-    def prefix(self, readable=(), chdir=None, tmp=True):
-        """The words that run a command as the submission, confined (empty for "none")."""
-        if self.kind == "none":
-            return []
+    def prefix(self, writable=(), readable=(), chdir=None, env=None, tmp=True):
+        """The words that run a command as the submission, confined: it may write the folders
+        of `writable` and read those of `readable` (where bubblewrap holds, nothing else of the
+        scratch exists for it; in the fallback, the folders' owners and modes say). With chdir
+        and env, the command starts there with exactly that environment (/usr/bin/env), so
+        that whoever runs these words needs neither."""
         words = []
-        if self.root:
+        if self.root and self.kind != "none":
             words += ["setpriv", f"--reuid={self.uid}", f"--regid={self.uid}", "--clear-groups",
                       "--no-new-privs", "--inh-caps=-all", "--bounding-set=-all", "--"]
         if self.kind == "bubblewrap":
-            words += bubblewrap_words(self.scratch, readable, chdir, self.limits.tmp if tmp
+            words += bubblewrap_words(writable, readable, chdir, self.limits.tmp if tmp
                                       else None)
+        if chdir or env is not None:
+            # (after NAME=VALUE words, env takes the next word as the command: no "--" there)
+            words += ["/usr/bin/env"] + (["-i"] if env is not None else []) + \
+                ([f"--chdir={chdir}"] if chdir else []) + \
+                ([f"{k}={v}" for k, v in env.items()] if env else ["--"])
         return words
 
     def try_bubblewrap(self):
@@ -289,28 +349,74 @@ class Sandbox:
                 resource.setrlimit(resource.RLIMIT_NPROC, (limits.processes, limits.processes))
         return apply
 
-    def run(self, argv, seconds, env, stdout, cwd=None, readable=(), file_size=None,
+    def run(self, argv, seconds, env, stdout, cwd=None, writable=(), readable=(), file_size=None,
             cpu_seconds=None):
-        """Runs argv as the submission; (exit status, timed out). The whole process tree ends
-        when it returns: at the time-out, or when the command ends first."""
-        command = self.prefix(readable, cwd) + [str(a) for a in argv]
+        """Runs argv as the submission, in cwd, writing only the folders of `writable`;
+        (exit status, timed out). The whole process tree ends when it returns, every process of
+        the submission's user with it: at the time-out, or when the command ends first."""
+        command = self.prefix(writable, readable, cwd, env) + [str(a) for a in argv]
         process = subprocess.Popen(
-            command, cwd=cwd, env=env, stdout=stdout, stderr=subprocess.STDOUT,
+            command, cwd="/", env=env, stdout=stdout, stderr=subprocess.STDOUT,
             stdin=subprocess.DEVNULL,
             preexec_fn=self.limit(cpu_seconds or seconds + 2, file_size or
                                   self.limits.file_size))
-        return wait_then_end(process, seconds)
+        try:
+            return wait_then_end(process, seconds)
+        finally:
+            self.end_all()
 
-    def run_outside(self, argv, seconds, env, stdout, cwd=None, file_size=None):
-        """Runs a program of the teacher's (a checker) as the grader, out of the sandbox but
-        within the limits and in the submission's cgroup; (exit status, timed out). Its process
-        group ends when it returns: the bubblewrap of the runner it started, and so the runner
-        (--die-with-parent)."""
+    def run_outside(self, argv, seconds, env, stdout, cwd, file_size=None):
+        """Runs a program of the teacher's (a checker, verified against the kit) as the grader,
+        out of the sandbox, in cwd (a folder of the grader's), within the limits and in the
+        submission's cgroup; (exit status, timed out). Its process group ends when it returns:
+        the bubblewrap of the runner it started, and so the runner (--die-with-parent)."""
         process = subprocess.Popen(
             [str(a) for a in argv], cwd=cwd, env=env, stdout=stdout, stderr=subprocess.STDOUT,
             stdin=subprocess.DEVNULL,
             preexec_fn=self.limit(seconds + 2, file_size or self.limits.file_size))
         return wait_then_end(process, seconds)
+
+
+def remove_owned(folder, uid, depth):
+    """Removes what uid owns in folder, and, `depth` levels down, in the folders there that
+    every user may write (sticky, like /tmp/.X11-unix); never through a link."""
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return
+    for entry in entries:
+        try:
+            info = entry.stat(follow_symlinks=False)
+        except OSError:
+            continue
+        if info.st_uid == uid:
+            if stat.S_ISDIR(info.st_mode):
+                shutil.rmtree(entry.path, ignore_errors=True)
+            else:
+                try:
+                    os.unlink(entry.path)
+                except OSError:
+                    pass
+        elif depth > 1 and stat.S_ISDIR(info.st_mode) and info.st_mode & 0o002:
+            remove_owned(Path(entry.path), uid, depth - 1)
+
+
+def processes_of(uid):
+    """The processes of a user that still live (zombies, already dead, left out): /proc read
+    directly, where pgrep or ps may be missing (a minimal container)."""
+    found = []
+    for entry in os.scandir("/proc"):
+        if not entry.name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry.name}/status") as status:
+                fields = dict(line.split(":", 1) for line in status if ":" in line)
+        except OSError:
+            continue  # gone meanwhile
+        uids = fields.get("Uid", "").split()[:3]
+        if str(uid) in uids and not fields.get("State", "").strip().startswith(("Z", "X")):
+            found.append(int(entry.name))
+    return found
 
 
 def wait_then_end(process, seconds):
@@ -329,7 +435,7 @@ def wait_then_end(process, seconds):
     return code, timed_out
 
 
-def bubblewrap_words(scratch, readable, chdir, tmp_bytes):
+def bubblewrap_words(writable, readable, chdir, tmp_bytes):
     words = ["bwrap", "--unshare-all", "--die-with-parent", "--new-session",
              "--ro-bind", "/usr", "/usr", "--proc", "/proc", "--dev", "/dev"]
     for top in ("bin", "sbin", "lib", "lib32", "lib64", "libx32"):
@@ -342,9 +448,13 @@ def bubblewrap_words(scratch, readable, chdir, tmp_bytes):
         words += ["--ro-bind-try", f"/etc/{name}", f"/etc/{name}"]
     if tmp_bytes:
         words += ["--size", str(tmp_bytes), "--tmpfs", "/tmp"]
-    words += ["--bind", str(scratch), str(scratch)]
     for path in readable:
         words += ["--ro-bind", str(path), str(path)]
+    for path in writable:
+        words += ["--bind", str(path), str(path)]
+    # The sandbox's own root (the folders made to hold the binds) read-only: it writes only
+    # the folders given, its /tmp and /dev/shm (its own, gone with it).
+    words += ["--remount-ro", "/"]
     if chdir:
         words += ["--chdir", str(chdir)]
     return words + ["--"]
@@ -376,17 +486,14 @@ def read_written(path, limit):
 
 
 def readable_by_submission(sandbox, path):
-    """Whether the submission's user could read path (a check of the fallback's reach)."""
+    """Whether the submission's user could read path, or reach into it (a folder it may pass
+    through: the names of a student copy are known), in the fallback."""
     if sandbox.kind != "user":
         return False
-    tried = subprocess.run(sandbox.prefix() + ["test", "-r", str(path)], capture_output=True)
+    test = "test -r \"$1\" || { test -d \"$1\" && test -x \"$1\"; }"
+    tried = subprocess.run(sandbox.prefix() + ["/bin/sh", "-c", test, "sh", str(path)],
+                           capture_output=True)
     return tried.returncode == 0
-
-
-def runner_sandbox_variable(sandbox, readable=(), chdir=None):
-    """CLOTHLAB_LAB_SANDBOX: the prefix, as a JSON array, with which a checker of tests/lab
-    starts the runner that links the student's code."""
-    return json.dumps(sandbox.prefix(readable, chdir))
 
 
 def measure(command, env, cwd):  # pragma: no cover (for docs/teaching.md's numbers)

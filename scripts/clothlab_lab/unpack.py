@@ -24,6 +24,12 @@ from pathlib import Path
 
 SKIPPED_FOLDERS = ("build", "out", "Testing", ".git")  # a copy's build and version folders
 CHUNK = 1 << 16
+NAME_BYTES, PATH_BYTES = 255, 1024  # a file name's bytes (Linux's NAME_MAX), a path's
+
+
+def printable_start(name):
+    """The start of a name, for a note (at most 60 characters)."""
+    return name[:60] + ("..." if len(name) > 60 else "")
 
 
 class TooLarge(Exception):
@@ -57,6 +63,11 @@ class Writer:
         if raw.startswith("/") or ".." in parts or not parts or any("\0" in p for p in parts):
             self.note("a path outside the submission (absolute, or with ..): skipped")
             return None
+        if any(len(p.encode("utf-8")) > NAME_BYTES for p in parts) or \
+                len(raw.encode("utf-8")) > PATH_BYTES:
+            self.note(f"a file name longer than {NAME_BYTES} bytes (or a path longer than "
+                      f"{PATH_BYTES}): skipped")
+            return None
         return "/".join(parts)
 
     def note(self, text):
@@ -76,9 +87,16 @@ class Writer:
                 self.max_bytes:
             raise TooLarge(f"more than {self.max_bytes // (1 << 20)} MB unpacked")
         target = self.dest / name
-        target.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            target.parent.mkdir(parents=True, exist_ok=True)
+            out = open(target, "wb")
+        except OSError as error:
+            # One entry that cannot be written (a name the file system refuses, a file where a
+            # folder of the same name is): skipped, the rest unpacked.
+            self.note(f"{printable_start(name)}: cannot be written ({error.strerror}): skipped")
+            return
         written = 0
-        with open(target, "wb") as out:
+        with out:
             while True:
                 block = source.read(CHUNK)
                 if not block:
@@ -127,7 +145,12 @@ def from_folder(source, writer):
         dirs[:] = [d for d in dirs if not d.startswith(SKIPPED_FOLDERS)]
         for file in files:
             path = Path(folder) / file
-            info = path.lstat()
+            try:
+                info = path.lstat()
+            except OSError:
+                writer.count()
+                writer.note("a file that cannot be read: skipped")
+                continue
             relative = os.fsencode(path.relative_to(source))
             if not stat.S_ISREG(info.st_mode):
                 writer.count()
@@ -136,7 +159,12 @@ def from_folder(source, writer):
             if name is None:
                 writer.count()
                 continue
-            fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW)
+            try:
+                fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW)
+            except OSError:
+                writer.count()
+                writer.note("a file that cannot be read: skipped")
+                continue
             with os.fdopen(fd, "rb") as stream:
                 writer.write(name, stream, info.st_size)
 

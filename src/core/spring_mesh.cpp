@@ -1,7 +1,8 @@
 // The handout's spring_mesh (section 4): what a student reads and writes for questions 6 to 9
-// and 13. What the rest of clothlab needs from the cloth is beside it: spring_mesh_step.cpp (the
-// mouse drag, the stability lab's schemes, the constraints), spring_mesh_geometry.cpp (the
-// springs' list, the normals) and tearing.cpp.
+// and 13, in the handout's order: apply_force (6), the pins in load_model (7), compute_force (8,
+// and the wind of 13), the ground (9). What the rest of clothlab needs from the cloth is beside it:
+// spring_mesh_step.cpp (the mouse drag, the stability lab's schemes, the constraints),
+// spring_mesh_geometry.cpp (the springs' list, the normals) and tearing.cpp.
 #include "core/spring_mesh.hpp"
 
 #include <algorithm>
@@ -12,6 +13,50 @@ namespace clothlab {
 
 spring_mesh::spring_mesh(const cloth_parameters& p) : parameters(p) {
   load_model();
+}
+
+void spring_mesh::apply_force() {
+  // dt, the damping mu, the mass m (at this N: question 10) and g0, the handout's 9.8 m/s^2.
+  const dynamics_parameters d = effective_parameters().dynamics;
+  std::span<glm::dvec3> vertices = as_vectors(particles_.position);   // m
+  std::span<glm::dvec3> speed = as_vectors(particles_.velocity);      // m/s
+  std::span<const glm::dvec3> forces = as_vectors(particles_.force);  // N, from compute_force
+  // BEGIN SOLUTION Q6: apply_force, the handout's two loops
+  // STUDENT(handout)| // TODO Q6 (apply_force): integrate the vertices over one step dt by the
+  // STUDENT(handout)| // handout's explicit Euler in its code order: the pseudo-code of section 4.3
+  // STUDENT(handout)| // (its two loops over the vertices). The acceleration is the force over the
+  // STUDENT(handout)| // mass m = d.mass plus gravity g = (0, 0, -d.gravity) (equation 4), with the
+  // STUDENT(handout)| // damping mu = d.damping and dt = d.time_step. A fixed vertex
+  // STUDENT(handout)| // (particles_.is_fixed[k]) never moves: the pins, the mouse and the GPU path
+  // STUDENT(handout)| // count on it. (--integrator explicit, equation 6 taken literally, is built on
+  // STUDENT(handout)| // this function: nothing to write for it.) For now every vertex falls freely.
+  // STUDENT(handout)| // Done when ./test.sh -L q6 passes.
+  // STUDENT(guided)| // TODO Q6 (apply_force): with dt = d.time_step, mu = d.damping, m = d.mass and
+  // STUDENT(guided)| // g = (0, 0, -d.gravity), for every vertex k that is not fixed
+  // STUDENT(guided)| // (particles_.is_fixed[k] == 0),
+  // STUDENT(guided)| //   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
+  // STUDENT(guided)| // then, in a second loop, vertices[k] += dt speed[k]. (--integrator explicit
+  // STUDENT(guided)| // is built on this function.) For now every vertex falls freely.
+  // STUDENT| const double dt = d.time_step;
+  // STUDENT| const glm::dvec3 g = {0.0, 0.0, -d.gravity};
+  // STUDENT| for (std::size_t k = 0; k < vertices.size(); ++k) {
+  // STUDENT|   if (!particles_.is_fixed[k]) {
+  // STUDENT|     speed[k] += dt * g;
+  // STUDENT|     vertices[k] += dt * speed[k];
+  // STUDENT|   }
+  // STUDENT| }
+  const double dt = d.time_step;                // s
+  const double mu = d.damping;                  // 1/s
+  const double m = d.mass;                      // kg
+  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
+  // The handout's pseudo-code (section 4.3), a fixed vertex left as it is (question 7).
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    if (!particles_.is_fixed[k])
+      speed[k] = (1 - dt * mu) * speed[k] + dt * (forces[k] / m + g);
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    if (!particles_.is_fixed[k])
+      vertices[k] += dt * speed[k];
+  // END SOLUTION Q6
 }
 
 void spring_mesh::load_model() {
@@ -30,13 +75,18 @@ void spring_mesh::load_model() {
 
   list_springs();  // the springs of figure 6, for drawing, the energy and tearing
 
-  // Question 7: the two corners (0, 0) and (N-1, 0) never move.
+  // Question 7: two corners of the cloth never move (with --pins corners, the default).
   if (parameters.pins == pin_mode::corners) {
     // BEGIN SOLUTION Q7: pin two corners
-    // STUDENT(handout)| // TODO Q7 (pins): fix two corners of the cloth, s(0, 0) and s(N-1, 0)
-    // STUDENT(handout)| // (n here): apply_force never moves a vertex marked in particles_.is_fixed
-    // STUDENT(handout)| // (index(ku, kv, n) gives its index k). For now nothing is pinned: the cloth
-    // STUDENT(handout)| // falls whole. Done when ./test.sh -L q7 passes.
+    // STUDENT(handout)| // TODO Q7 (pins): fix two corners of the cloth (handout question 7; the
+    // STUDENT(handout)| // corners are s(0, 0), s(N-1, 0), s(0, N-1) and s(N-1, N-1), N = n here, and
+    // STUDENT(handout)| // index(ku, kv, n) gives the index k of s(ku, kv)). apply_force never moves
+    // STUDENT(handout)| // a vertex marked in particles_.is_fixed; or, as the handout's section 4.3
+    // STUDENT(handout)| // suggests, apply_force may skip the pinned vertices itself (then only when
+    // STUDENT(handout)| // parameters.pins == pin_mode::corners: --pins none pins nothing). The
+    // STUDENT(handout)| // pictures of the documents hang the cloth from s(0, 0) and s(N-1, 0). For
+    // STUDENT(handout)| // now nothing is pinned: the cloth falls whole. Done when ./test.sh -L q7
+    // STUDENT(handout)| // passes.
     // STUDENT(guided)| // TODO Q7 (pins): fix the two corners s(0, 0) and s(N-1, 0): set
     // STUDENT(guided)| // particles_.is_fixed[k] = 1 for their index k = index(ku, kv, n). apply_force
     // STUDENT(guided)| // never moves a fixed vertex. For now nothing is pinned: the cloth falls whole.
@@ -45,6 +95,7 @@ void spring_mesh::load_model() {
     // END SOLUTION Q7
   }
   compute_normals();
+  find_pins_and_gravity();  // wherever questions 6 to 8 put them (spring_mesh_step.cpp)
 }
 
 void spring_mesh::compute_force() {
@@ -70,7 +121,9 @@ void spring_mesh::compute_force() {
       // STUDENT(handout)| // flat cloth at rest (initial[k], the initial positions, and spacing(), h,
       // STUDENT(handout)| // are at hand). spring_intact(ku, kv, du, dv) says whether a spring joins
       // STUDENT(handout)| // s(ku, kv) to s(ku + du, kv + dv): not past the border of the grid, nor
-      // STUDENT(handout)| // once it tore. Done when ./test.sh -L q8 passes and the cloth hangs.
+      // STUDENT(handout)| // once it tore (clothlab's tearing, an addition off by default, removes a
+      // STUDENT(handout)| // spring only through it). Done when ./test.sh -L q8 passes and the cloth
+      // STUDENT(handout)| // hangs.
       // STUDENT(guided)| // TODO Q8 (structural springs): for each (du, dv) in structural_neighbours
       // STUDENT(guided)| // (s(ku+1, kv), s(ku, kv+1), s(ku-1, kv), s(ku, kv-1)) with
       // STUDENT(guided)| // spring_intact(ku, kv, du, dv) (inside the grid, not torn), the neighbour
@@ -137,61 +190,6 @@ void spring_mesh::compute_force() {
       forces[k] = f;
     }
   }
-}
-
-void spring_mesh::apply_force() {
-  // dt, the damping mu, the mass m (at this N: question 10) and g0, the handout's 9.8 m/s^2.
-  const dynamics_parameters d = effective_parameters().dynamics;
-  std::span<glm::dvec3> vertices = as_vectors(particles_.position);   // m
-  std::span<glm::dvec3> speed = as_vectors(particles_.velocity);      // m/s
-  std::span<const glm::dvec3> forces = as_vectors(particles_.force);  // N, from compute_force
-  // BEGIN SOLUTION Q6: apply_force, the handout's two loops
-  // STUDENT(handout)| // TODO Q6 (apply_force): integrate the vertices over one step dt by the
-  // STUDENT(handout)| // handout's explicit Euler: its pseudo-code of section 4.3 (the two loops
-  // STUDENT(handout)| // over the vertices), and, for --integrator explicit
-  // STUDENT(handout)| // (d.integrator == integrator_kind::explicit_euler), its equation 6 taken
-  // STUDENT(handout)| // literally (both updates from the state at the start of the step). The
-  // STUDENT(handout)| // acceleration is the force over the mass m = d.mass plus gravity
-  // STUDENT(handout)| // g = (0, 0, -d.gravity) (equation 4), with the damping mu = d.damping and
-  // STUDENT(handout)| // dt = d.time_step. A fixed vertex (particles_.is_fixed[k]) never moves. For
-  // STUDENT(handout)| // now every vertex falls freely. Done when ./test.sh -L q6 passes.
-  // STUDENT(guided)| // TODO Q6 (apply_force): with dt = d.time_step, mu = d.damping, m = d.mass and
-  // STUDENT(guided)| // g = (0, 0, -d.gravity), for every vertex k that is not fixed
-  // STUDENT(guided)| // (particles_.is_fixed[k] == 0),
-  // STUDENT(guided)| //   speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)
-  // STUDENT(guided)| // then, in a second loop, vertices[k] += dt speed[k]; for --integrator
-  // STUDENT(guided)| // explicit (d.integrator == integrator_kind::explicit_euler), one loop with the
-  // STUDENT(guided)| // position moved by the OLD speed. For now every vertex falls freely.
-  // STUDENT| const double dt = d.time_step;
-  // STUDENT| const glm::dvec3 g = {0.0, 0.0, -d.gravity};
-  // STUDENT| for (std::size_t k = 0; k < vertices.size(); ++k) {
-  // STUDENT|   if (!particles_.is_fixed[k]) {
-  // STUDENT|     speed[k] += dt * g;
-  // STUDENT|     vertices[k] += dt * speed[k];
-  // STUDENT|   }
-  // STUDENT| }
-  const double dt = d.time_step;                // s
-  const double mu = d.damping;                  // 1/s
-  const double m = d.mass;                      // kg
-  const glm::dvec3 g = {0.0, 0.0, -d.gravity};  // m/s^2
-  if (d.integrator != integrator_kind::explicit_euler) {
-    // The handout's pseudo-code (section 4.3), a fixed vertex left as it is (question 7).
-    for (std::size_t k = 0; k < vertices.size(); ++k)
-      if (!particles_.is_fixed[k])
-        speed[k] = (1 - dt * mu) * speed[k] + dt * (forces[k] / m + g);
-    for (std::size_t k = 0; k < vertices.size(); ++k)
-      if (!particles_.is_fixed[k])
-        vertices[k] += dt * speed[k];
-  } else {
-    // Equation 6: p(t + dt) = p(t) + dt v(t), v(t + dt) = (1 - mu dt) v(t) + dt (F / m + g).
-    for (std::size_t k = 0; k < vertices.size(); ++k) {
-      if (!particles_.is_fixed[k]) {
-        vertices[k] += dt * speed[k];
-        speed[k] = (1 - dt * mu) * speed[k] + dt * (forces[k] / m + g);
-      }
-    }
-  }
-  // END SOLUTION Q6
 }
 
 void apply_ground_contact(double ground_height, double ground_friction, double time_step,

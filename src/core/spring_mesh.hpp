@@ -30,10 +30,11 @@ class spring_mesh {
   // ... compute_force puts in forces[k] the force on every vertex: its springs (question 8)
   // and the wind (question 13), from the current positions ...
   void compute_force();
-  // ... and apply_force integrates over one step dt (question 6): explicit Euler, in the
-  // handout's code order (semi-implicit, the default) or its equation 6's (--integrator
-  // explicit). A fixed vertex never moves. Gravity: the acceleration g here, or the force m g
-  // in compute_force, as the handout's section 4.1 puts it (the tests accept either).
+  // ... and apply_force integrates over one step dt (question 6): explicit Euler in the
+  // handout's code order (semi-implicit, the default; integrate_step builds equation 6's order,
+  // --integrator explicit, on it). A fixed vertex never moves. Gravity: the acceleration g
+  // here, or the force m g in compute_force, as the handout's section 4.1 puts it (the tests
+  // accept either).
   void apply_force();
   // The three stiffnesses K (N/m), as the simulation uses them at this N (question 10).
   double structural_stiffness() const { return stiffness(spring_family::structural); }
@@ -71,8 +72,9 @@ class spring_mesh {
 
   // The mouse drag (docs/model.md): F_d = K_d (q - p) on the dragged vertex, added to forces.
   void add_drag_force();
-  // apply_force for the two Euler schemes; the stability lab's Verlet, RK4 and implicit Euler
-  // (integrator.hpp) otherwise.
+  // apply_force for the handout's Euler (semi-implicit); for equation 6 taken literally
+  // (explicit), apply_force's speeds with each vertex moved by its speed at the start of the
+  // step; the stability lab's Verlet, RK4 and implicit Euler (integrator.hpp) otherwise.
   void integrate_step();
   // The constraints after the integration, in the order of docs/model.md: the sphere, the
   // ground (question 9), self-collision, tearing (each off unless its parameter says so).
@@ -127,8 +129,17 @@ class spring_mesh {
   self_collision self_collision_;  // its scratch arrays, kept between steps
   time_integrator integrator_;     // the scheme's scratch arrays, kept between steps
   particle_system stage_state_;    // the current state, kept aside while forces_at runs
+                                   // (and the state at the start of an explicit step)
   std::vector<double> stage_normals_;
-  void list_springs();                    // springs_ of the grid, each once (load_model)
+  void list_springs();  // springs_ of the grid, each once (load_model)
+  // What the rest of clothlab needs to know of the answers (load_model). The pins: every vertex
+  // that apply_force never moves is marked in is_fixed (question 7 may pin the corners there or
+  // in apply_force, as the handout's section 4.3 suggests), where the GPU path, the drawing,
+  // the mouse and the contacts read them. Gravity: whether compute_force adds the force m g
+  // (the handout's section 4.1) rather than apply_force the acceleration g, so that the
+  // stability lab's schemes, which add g themselves, take it off (forces_at).
+  void find_pins_and_gravity();
+  bool gravity_in_forces_ = false;
   void set_spring_torn(const spring& s);  // both ends' slots
   static std::size_t spring_slot(std::size_t k, int du, int dv) {
     return 25 * k + static_cast<std::size_t>(5 * (dv + 2) + (du + 2));

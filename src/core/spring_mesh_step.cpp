@@ -1,6 +1,7 @@
 // The parts of the cloth's step beyond the handout's functions (spring_mesh.cpp): its parameters
-// at this N (question 10), the mouse drag, the stability lab's schemes and the constraints.
-// None of it is a question of the lab; spring_mesh::step (spring_mesh.hpp) calls them in order.
+// at this N (question 10), the mouse drag, the pins and gravity wherever the answers put them, the
+// stability lab's schemes and the constraints. None of it is a question of the lab;
+// spring_mesh::step (spring_mesh.hpp) calls them in order.
 #include <algorithm>
 
 #include "core/contacts.hpp"
@@ -12,6 +13,38 @@ cloth_parameters spring_mesh::effective_parameters() const {
   cloth_parameters built = parameters;
   built.grid_size = grid_size_;
   return effective_cloth_parameters(built);
+}
+
+// The pins: one trial step of apply_force from the state at rest with every vertex moving (speed
+// (1, 1, 1), no force); a vertex whose position it leaves exactly as it was is pinned (a free one
+// moves by dt (1 - mu dt) along x at least). Gravity: compute_force on the cloth at rest without
+// wind gives the springs' forces, zero within rounding, plus m g if it adds gravity. The state
+// is put back.
+void spring_mesh::find_pins_and_gravity() {
+  const dynamics_parameters d = effective_parameters().dynamics;
+  const particle_system state = particles_;
+  std::vector<std::uint8_t> pinned = state.is_fixed;
+  if (d.time_step > 0.0 && d.damping * d.time_step != 1.0) {  // else no trial can tell
+    std::fill(particles_.velocity.begin(), particles_.velocity.end(), 1.0);
+    std::fill(particles_.force.begin(), particles_.force.end(), 0.0);
+    apply_force();
+    for (std::size_t k = 0; k < particles_.size(); ++k)
+      if (particles_.get_position(k) == state.get_position(k))
+        pinned[k] = 1;
+    particles_ = state;
+  }
+  particles_.is_fixed = std::move(pinned);
+
+  const double wind = parameters.wind_strength;
+  parameters.wind_strength = 0.0;
+  compute_force();
+  parameters.wind_strength = wind;
+  const glm::dvec3 weight = {0.0, 0.0, -d.mass * d.gravity};  // m g, N
+  bool with_gravity = weight.z != 0.0;
+  for (std::size_t k = 0; k < particles_.size() && with_gravity; ++k)
+    with_gravity = glm::length(particles_.get_force(k) - weight) < 0.5 * std::abs(weight.z);
+  gravity_in_forces_ = with_gravity;
+  particles_.force = state.force;
 }
 
 void spring_mesh::add_drag_force() {
@@ -28,11 +61,25 @@ void spring_mesh::add_drag_force() {
 
 void spring_mesh::integrate_step() {
   const integrator_kind scheme = parameters.dynamics.integrator;
-  if (scheme == integrator_kind::semi_implicit || scheme == integrator_kind::explicit_euler) {
+  if (scheme == integrator_kind::semi_implicit) {
     apply_force();  // question 6
     return;
   }
   const dynamics_parameters d = effective_parameters().dynamics;  // the mass at this N
+  if (scheme == integrator_kind::explicit_euler) {
+    // Equation 6 taken literally (model.md): the speeds of apply_force (question 6), and every
+    // vertex that it moves moved by its speed at the start of the step, p + dt v(t).
+    stage_state_.position = particles_.position;
+    stage_state_.velocity = particles_.velocity;
+    apply_force();
+    std::span<glm::dvec3> p = as_vectors(particles_.position);
+    std::span<const glm::dvec3> p_start = as_vectors(stage_state_.position);
+    std::span<const glm::dvec3> v_start = as_vectors(stage_state_.velocity);
+    for (std::size_t k = 0; k < particles_.size(); ++k)
+      if (particles_.is_fixed[k] == 0)
+        p[k] = p_start[k] + d.time_step * v_start[k];
+    return;
+  }
   const std::array<spring_set, 3> sets = spring_sets();
   const force_model forces = {sets,
                               [this](std::span<const double> position, std::span<double> force) {
@@ -45,12 +92,20 @@ void spring_mesh::integrate_step() {
 // current state (with its normals) is put back after.
 void spring_mesh::forces_at(std::span<const double> position, std::span<double> force) {
   stage_state_.position.assign(position.begin(), position.end());
+  // The current normals stand in until compute_force computes the stage's (with the wind only):
+  // an answer may read normals[k] whatever K_w.
+  stage_normals_.assign(normals_.begin(), normals_.end());
   stage_state_.force.resize(particles_.force.size());
   std::swap(particles_.position, stage_state_.position);
   std::swap(particles_.force, stage_state_.force);
   std::swap(normals_, stage_normals_);
   compute_force();
   add_drag_force();
+  if (gravity_in_forces_) {  // the schemes add g themselves (find_pins_and_gravity)
+    const dynamics_parameters d = effective_parameters().dynamics;
+    for (glm::dvec3& f : as_vectors(particles_.force))
+      f.z += d.mass * d.gravity;
+  }
   std::copy(particles_.force.begin(), particles_.force.end(), force.begin());
   std::swap(particles_.position, stage_state_.position);
   std::swap(particles_.force, stage_state_.force);

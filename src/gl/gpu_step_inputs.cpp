@@ -114,9 +114,13 @@ void step_uniforms::set(const cloth_parameters& p, int grid_size,
                                 static_cast<float>(x.z)};
   };
   const dynamics_parameters& d = p.dynamics;
-  // u_w, unit. K_w = 0 means no wind at all, as on the CPU, whatever u_w (even a zero one).
+  // u_w, a unit vector even without wind (K_w = 0 is what turns it off, as on the CPU), so that
+  // the shader may normalize() it again: never a zero vector, whose normalize() is NaN. The
+  // parameters' direction is never zero (the options and the window refuse it); were it zero,
+  // the default direction stands in.
+  const double wind_length = glm::length(p.wind_direction);
   const glm::dvec3 wind_unit =
-      p.wind_strength != 0.0 ? p.wind_direction / glm::length(p.wind_direction) : glm::dvec3(0.0);
+      wind_length > 0.0 ? p.wind_direction / wind_length : cloth_parameters{}.wind_direction;
   const bool drag = p.drag.enabled && p.drag.ku >= 0 && p.drag.ku < grid_size && p.drag.kv >= 0 &&
                     p.drag.kv < grid_size;
   const values v = {

@@ -28,7 +28,7 @@ std::vector<anatomy_row> anatomy_rows(const frame_anatomy& a) {
   const char* model = "spring_mesh.cpp";
   const char* forces = tr("spring_mesh.cpp (Q8 springs, Q13 wind)");
   const char* integration = tr("spring_mesh.cpp (Q6 loops)");
-  const char* constraints = "spring_mesh.cpp apply_constraints: apply_ground_contact (Q9)";
+  const char* constraints = "spring_mesh.cpp (Q9 apply_ground_contact)";
   if (a.stage == stage_kind::spring) {
     model = "single_spring.cpp";
     forces = tr("single_spring.cpp (Q2, equation 2)");

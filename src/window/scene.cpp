@@ -304,6 +304,28 @@ void scene::count_step(double time_step) {
   ++status.step;
   status.time += time_step;
   ++steps_taken_;
+  count_grab_stillness(time_step);
+}
+
+// While a grab is held, each whole simulated second since its target last moved is said once:
+// what the window tests wait for before they judge where the grabbed mass or particle went
+// (under load the window runs far fewer steps a second of wall time).
+void scene::count_grab_stillness(double time_step) {
+  if (!grabbing())
+    return;
+  const glm::dvec3 target = drag_target();
+  if (target != grab_target_) {
+    grab_target_ = target;
+    grab_still_seconds_ = 0.0;
+    return;
+  }
+  const double before = grab_still_seconds_;
+  grab_still_seconds_ += time_step;
+  if (std::floor(grab_still_seconds_) > std::floor(before)) {
+    std::printf("clothlab-window: the grab's target has been still for %.0f s of simulated time\n",
+                std::floor(grab_still_seconds_));
+    std::fflush(stdout);
+  }
 }
 
 void scene::report_divergence(divergence_status check) {

@@ -240,6 +240,7 @@ class scene {
   bool load_gpu_path(cloth_backend target, std::string& why);
   void read_gpu_state();  // the current GPU path's state into cloth_stage
   void count_step(double time_step);
+  void count_grab_stillness(double time_step);
   void report_divergence(divergence_status check);
   void fall_back_to_cpu(const std::string& reason);
   void reload_gpu_cloth();
@@ -290,6 +291,8 @@ class scene {
   int viewport_width_ = 1;
   int viewport_height_ = 1;
   glm::dvec3 grab_plane_point_{0.0};    // the grabbed particle at the press, m
+  glm::dvec3 grab_target_{0.0};         // the drag's target at the last step, m
+  double grab_still_seconds_ = 0.0;     // simulated time since the target last moved, s
   glm::dvec3 sphere_grab_offset_{0.0};  // Shift + drag: cursor point - sphere centre at the press
   glm::dvec3 sphere_plane_point_{0.0};  // the sphere's centre at the press, m
 

@@ -56,9 +56,11 @@ TEST_F(cli, CsvEveryWritesALastStepThatIsAMultipleOfKOnce) {
   EXPECT_EQ(written_steps(read_csv(work() / "s.csv"), 2), (std::vector<long>{0, 3, 6, 9}));
 }
 
-// Cloth N = 3, S = 1 (h = 0.5), pinned corners 0 and 2. Step 0: p(ku, kv) = (-0.5 + 0.5 ku,
-// -0.5 + 0.5 kv, 0) at rest. Step 1 (dt = 0.002, springs at rest length, so gravity alone):
-// free particles have v = (0, 0, -9.8 * 0.002) = (0, 0, -0.0196), pinned ones stay at rest.
+// Cloth N = 3, S = 1 (h = 0.5), two pinned corners (question 7: any two; the teacher's are 0 and
+// 2). Step 0: p(ku, kv) = (-0.5 + 0.5 ku, -0.5 + 0.5 kv, 0) at rest. Step 1 (dt = 0.002, springs
+// at rest length, so gravity alone): free particles have v = (0, 0, -9.8 * 0.002) =
+// (0, 0, -0.0196), within the float rounding (1e-6) of an answer to question 6 that computes in
+// single precision; pinned ones stay at rest.
 TEST_F(SolutionCli, ClothCsvListsEveryParticleInIndexOrder) {
   const run_result result =
       run({"--headless", "--stage", "cloth", "--N", "3", "--steps", "1", "--csv", "cloth.csv"});
@@ -66,17 +68,23 @@ TEST_F(SolutionCli, ClothCsvListsEveryParticleInIndexOrder) {
   const csv_file csv = read_csv(work() / "cloth.csv");
   EXPECT_EQ(csv.header, csv_header);
   ASSERT_EQ(written_steps(csv, 9), (std::vector<long>{0, 1}));
+  int pinned_corners = 0;
   for (std::size_t k = 0; k < 9; ++k) {
     const csv_row& initial = csv.rows[k];
     EXPECT_DOUBLE_EQ(initial.value[0], -0.5 + 0.5 * static_cast<double>(k % 3)) << k;
     EXPECT_DOUBLE_EQ(initial.value[1], -0.5 + 0.5 * static_cast<double>(k / 3)) << k;
     EXPECT_EQ(initial.value[2], 0.0) << k;
     const csv_row& first = csv.rows[9 + k];
-    const bool pinned = k == 0 || k == 2;
+    const bool pinned = first.value[5] == 0.0;
+    pinned_corners += pinned && k != 1 && k != 3 && k != 4 && k != 5 && k != 7;
     EXPECT_EQ(first.value[3], 0.0) << k;
     EXPECT_EQ(first.value[4], 0.0) << k;
-    EXPECT_NEAR(first.value[5], pinned ? 0.0 : -0.0196, 1e-15) << k;
+    if (pinned)
+      EXPECT_EQ(first.value[2], initial.value[2]) << k << ": a pinned particle never moves";
+    else
+      EXPECT_NEAR(first.value[5], -0.0196, 0.0196 * 1e-6) << k;
   }
+  EXPECT_EQ(pinned_corners, 2) << "two pinned corners, each with a zero velocity";
 }
 
 TEST_F(cli, UnwritableCsvExitsOne) {

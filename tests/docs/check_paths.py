@@ -13,7 +13,10 @@ from pathlib import Path
 
 root = Path(sys.argv[1]).resolve()
 documents = [root / "README.md"] + sorted((root / "docs").glob("*.md"))
-GENERATED = ("build/", "build-", "out/", "Testing/", "share/", "/", "~", "$", "../")
+GENERATED = ("build/", "build-", "out/", "Testing/", "share/", "/", "~", "$", "../",
+             # what scripts/grade makes: in its --out, its --work (the kit) and the scratch
+             "students/", "checkers/", "verdicts/", "logs/", "staged/", "copy/", "run/",
+             "unpack/")
 problems = []
 checked = 0
 for document in documents:

@@ -170,17 +170,22 @@ TEST_F(SolutionGpuCloth, PinnedParticlesStayExactlyInPlaceWithZeroVelocity) {
     gpu.step(p);
   spring_mesh result(p);
   gpu.read_state(result);
-  for (std::size_t k :
-       {spring_mesh::index(0, 0, grid_size), spring_mesh::index(grid_size - 1, 0, grid_size)}) {
+  // The two corners that question 7 pins (any two of the four) stay; the cloth fell.
+  std::size_t pinned = 0;
+  double lowest = 0.0;
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
+    lowest = std::min(lowest, result.particles().position[3 * k + 2]);
+    if (!cloth.particles().is_fixed[k])
+      continue;
+    ++pinned;
     for (std::size_t c = 0; c < 3; ++c) {
       EXPECT_EQ(result.particles().position[3 * k + c],
                 static_cast<float>(cloth.particles().position[3 * k + c]));
       EXPECT_EQ(result.particles().velocity[3 * k + c], 0.0);
     }
   }
-  // and the others did move: the cloth fell
-  EXPECT_LT(result.particles().position[3 * spring_mesh::index(0, grid_size - 1, grid_size) + 2],
-            -0.1);
+  EXPECT_EQ(pinned, 2u);
+  EXPECT_LT(lowest, -0.1);
 }
 
 TEST_F(SolutionGpuCloth, NoParticleEverEndsBelowTheGround) {
@@ -263,7 +268,10 @@ TEST_F(SolutionGpuCloth, NormalTextureHoldsTheNormalsOfTheCurrentPositions) {
   const double h = p.side_length / (grid_size - 1);
   std::printf("  max |n_gpu - n_cpu| = %.2g (tolerance %.2g)\n", normal_difference, 4 * delta / h);
   EXPECT_LE(normal_difference, 4 * delta / h);
-  EXPECT_GT(cpu.normals()[3 * spring_mesh::index(5, 5, grid_size) + 1], 0.01);  // curved
+  double tilt = 0.0;  // curved, whichever two corners question 7 pins: some normal leans
+  for (std::size_t k = 0; k < cpu.particles().size(); ++k)
+    tilt = std::max(tilt, std::hypot(cpu.normals()[3 * k], cpu.normals()[3 * k + 1]));
+  EXPECT_GT(tilt, 0.01);
 }
 
 TEST_F(GpuCloth, StepLeavesTheCallersGlStateAsItFoundIt) {

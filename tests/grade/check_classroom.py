@@ -108,22 +108,34 @@ def lab_questions(root):
 
 
 HEADER = """\
-# The lab's questions, graded on each push (GitHub Classroom's autograding, or any GitHub
+# The lab's questions, checked on each push (GitHub Classroom's autograding, or any GitHub
 # repository): the Debian 12 packages of scripts/setup.sh, the question tests built (ccache kept
-# between runs), then one grading step per question: its tests (ctest -L '^q8$', as
-# ./test.sh -L q8) earn its points when they all pass. The run's summary shows the table of the
-# questions (scripts/lab-report).
+# between runs), then one step per question: its tests (ctest -L '^q8$', as ./test.sh -L q8)
+# earn its points when they all pass. The run's summary shows the table of the questions
+# (scripts/lab-report). When a step before the tests fails (the packages, the build), every
+# question reports 0 and says so.
+# These points are your own feedback: they come from the tests of this repository, which you
+# can edit. Your grade is your teacher's, by the teacher's own tests (scripts/grade of the
+# teacher's copy, or Gradescope).
 # BEGIN TEACHER
 # Written by tests/grade/check_classroom.py --write from the lab's points: do not edit by hand
 # (the test compares).
 # The names are Classroom's own (its reporter uploads the points only from a workflow named
 # "Autograding Tests" whose one job is run-autograding-tests). The container: Debian 12, where
 # the project is built and tested (scripts/setup.sh's package names and versions), not
-# ubuntu-latest, which moves. These are the tests of the student's repository, which the
-# student can edit: feedback. The grade: scripts/grade, or its Gradescope bundle
-# (docs/teaching.md, "Grading a class").
+# ubuntu-latest, which moves. The graders run unless the run was cancelled, so that the
+# reporter always has a result per question: 0 with the reason when the build did not succeed.
 # END TEACHER
 """
+# The guard of each grader's command: the build's outcome, else 0 with the reason in words.
+BUILT = "${{ steps.build.outcome }}"
+NOT_CANCELLED = "${{ !cancelled() }}"
+
+
+def grader_guard(q):
+    return (f'test "{BUILT}" = success || {{ echo "{q}: 0 points: the question tests were not '
+            f'built (the step Build the question tests: {BUILT}); open the first failed step '
+            'above"; exit 1; }; ')
 
 
 def workflow_text(questions):
@@ -131,10 +143,13 @@ def workflow_text(questions):
     graders = "".join(f"""\
       - name: "{q} {title}"
         id: {label}
+        if: {NOT_CANCELLED}
         uses: {GRADER}
         with:
           test-name: "{q}: {title}"
-          command: ctest --test-dir build -L '^{label}$' --no-tests=error --output-on-failure --timeout 60
+          command: >-
+            {grader_guard(q)}ctest --test-dir build -L '^{label}$' --no-tests=error
+            --output-on-failure --timeout 60
           timeout: 5
           max-score: {points:g}
 """ for label, q, title, points in questions)
@@ -274,6 +289,9 @@ def static_checks(root, check):
               f"{label}, or passes when none is found")
         check(re.fullmatch(r"[A-Za-z0-9]+", label) is not None, f"{label}: the reporter takes "
               "letters and digits only")
+        check(step.get("if") == NOT_CANCELLED and step["with"]["command"].startswith(
+            grader_guard(q)), f"{q}: the grader does not run after a failed set-up, or does "
+              "not report 0 with the reason then (the reporter would read no result)")
     check(len(graders) == len(questions), f"{len(graders)} grading steps for "
           f"{len(questions)} questions")
     reporters = [s for s in steps if s.get("uses") == REPORTER]
@@ -335,13 +353,22 @@ def clean_clone(copy, dest):
     subprocess.run(["git", "clone", "-q", str(copy), str(dest)], check=True)
 
 
-def run_workflow(steps, folder, summary, check, expect_pass, title):
-    """Every step in order; the graders' verdicts and points."""
+def run_workflow(steps, folder, summary, check, expect_pass, title, expect_built=True):
+    """Every step in order, as the runner orders them (after a step that fails, only those
+    that run always or unless cancelled); the graders' verdicts and points. expect_built
+    False: the set-up is expected to fail, and every grader to say so."""
     earned = 0
     env = dict(os.environ)
+    outcomes = {}  # step id -> success | failure | skipped (steps.<id>.outcome)
+    failed = False  # a step failed (not continue-on-error): the job fails, the rest skips
     for step in steps:
         name = step.get("name", step.get("uses"))
         uses = step.get("uses", "")
+        if failed and step.get("if") not in ("always()", NOT_CANCELLED) and \
+                not str(step.get("if", "")).startswith("always()"):
+            outcomes[step.get("id")] = "skipped"
+            print(f"  [{title}] skipped after a failed step: {name}")
+            continue
         if uses.startswith("actions/cache/restore"):
             # What a restore leaves: a ccache folder at .ccache; here this machine's own.
             cache = subprocess.run(["ccache", "--get-config", "cache_dir"], capture_output=True,
@@ -366,10 +393,14 @@ def run_workflow(steps, folder, summary, check, expect_pass, title):
             started = time.monotonic()
             code, output = run_step(step, folder, env, summary)
             print(f"  [{title}] {name}: exit {code} in {time.monotonic() - started:.0f} s")
+            outcomes[step.get("id")] = "success" if code == 0 else "failure"
             if step.get("continue-on-error"):
-                check(code == 0 or not expect_pass, f"[{title}] {name} failed:\n{output[-2000:]}")
+                # The build: it must pass on the solution, fail where the set-up is broken.
+                wanted = (code != 0) if not expect_built else (code == 0 or not expect_pass)
+                check(wanted, f"[{title}] {name}: exit {code}:\n{output[-2000:]}")
             elif step.get("if") != "always()":
                 check(code == 0, f"[{title}] {name} failed:\n{output[-2000:]}")
+                failed = failed or code != 0
             continue
         if uses == GRADER:
             inputs = step["with"]
@@ -377,13 +408,18 @@ def run_workflow(steps, folder, summary, check, expect_pass, title):
             if inputs.get("setup-command"):
                 code, output = grader_command(inputs["setup-command"], folder)
             if code == 0:
-                code, output = grader_command(inputs["command"], folder)
+                code, output = grader_command(inputs["command"].replace(
+                    BUILT, outcomes.get("build", "skipped")), folder)
             passed = code == 0
             earned += inputs.get("max-score", 0) if passed else 0
             print(f"  [{title}] {inputs['test-name']}: {'pass' if passed else 'fail'}")
             check(passed == expect_pass, f"[{title}] {inputs['test-name']}: "
                   f"{'failed' if expect_pass else 'passed'}, expected the opposite:\n"
                   f"{output[-1500:]}")
+            if not expect_built:
+                check("0 points: the question tests were not built" in output,
+                      f"[{title}] {inputs['test-name']}: a failed set-up is not said:\n"
+                      f"{output[-1500:]}")
     return earned
 
 
@@ -427,6 +463,13 @@ def main():
             clean_clone(copy, clone)
             earned = run_workflow(steps, clone, summary, check, True, "solution")
             check(earned == total, f"the solution earns {earned:g} of {total:g} points")
+            # A set-up that fails (the build, here its configuration): every question reports
+            # 0 with the reason, none is left without a result.
+            with open(clone / "CMakeLists.txt", "a") as f:
+                f.write('\nmessage(FATAL_ERROR "a set-up that fails")\n')
+            earned = run_workflow(steps, clone, summary, check, False, "set-up fails",
+                                  expect_built=False)
+            check(earned == 0, f"a failed set-up earns {earned:g} points")
         finally:
             if not check.problems:
                 shutil.rmtree(work, ignore_errors=True)

@@ -5,7 +5,7 @@ The class is made from the solution and the student copy (scripts/make-student-v
   alice  every question right, handed in as a bare git repository
   bob    the student copy as handed out: every question a stub
   carol  Q5, Q6, Q7 wrong in a plausible way (Newton's third law forgotten, the mass ignored,
-         the wrong corner pinned)
+         the middle of an edge pinned)
   dave   Q8, Q9, Q12, Q13 wrong (shear springs as stiff as structural ones, the ground does not
          stop the fall, one stiffness on the GPU, the GPU wind blowing backwards)
   erin   right, but coupled_springs.cpp does not compile
@@ -14,8 +14,8 @@ The class is made from the solution and the student copy (scripts/make-student-v
   grace  the stubs, with the question tests, the CMake files and lab-report edited to pass
   heidi  right, as a .zip, from "another version" of the copy (its version stamp differs)
   judy   a .tar.gz with no student file in it
-and each grade, grades.csv, results.json (Gradescope's fields), junit.xml and report.html are
-checked; then the Gradescope bundle's run_autograder grades carol's files, uploaded loose, in a
+and each grade, grades.csv, students/NAME/results.json (Gradescope's fields), students/NAME/
+junit.xml and report.html (with its links to them) are checked; then the Gradescope bundle's run_autograder grades carol's files, uploaded loose, in a
 folder laid out like Gradescope's. One shared build (the grader's
 own), each submission an incremental rebuild of its own files.
 """
@@ -147,7 +147,7 @@ def make_class(maker, dest, outside):
     carol = maker.copy("carol", dest)
     maker.change(carol, "Q5", "add(i - 1, -F);", "")
     maker.change(carol, "Q6", "get_force(k) / m + g", "get_force(k) + g")
-    maker.change(carol, "Q7", "index(n - 1, 0, n)", "index(n - 1, n - 1, n)")
+    maker.change(carol, "Q7", "index(n - 1, 0, n)", "index(n / 2, 0, n)")  # not a corner
     subs.append(carol)
     dave = maker.copy("dave", dest)
     maker.change(dave, "Q8", "K_shear, L0", "K_structural, L0")
@@ -237,14 +237,15 @@ def main():
         points = {q["id"]: q["points"] for q in lab["questions"]}
         questions = list(points)
         out = work / "out"
-        graded = run([root / "scripts/grade", *subs, "--out", out, "--work", work / "kit",
-                      "--timeout", "2", "--test-budget", "30"])
+        graded = run([root / "scripts/grade", "--out", out, "--work", work / "kit",
+                      "--timeout", "2", "--test-budget", "30", "--", *subs])
         print(graded.stdout + graded.stderr[-6000:])
         if not check(graded.returncode == 0, "scripts/grade failed"):
             return 1
         sandboxed = "bubblewrap:" in graded.stderr
         names = ["alice", "bob", "carol", "dave", "erin", "frank", "grace", "heidi", "judy"]
-        results = {n: json.loads((out / n / "results.json").read_text()) for n in names}
+        results = {n: json.loads((out / "students" / n / "results.json").read_text())
+                   for n in names}
         score = {n: {t["name"].split(":")[0]: t["score"] for t in r["tests"]}
                  for n, r in results.items()}
         notes = {n: r["output"] for n, r in results.items()}
@@ -303,7 +304,7 @@ def main():
                   f"{name}/results.json: score is not the sum of its tests'")
         # JUnit.
         for name in names:
-            suites = ElementTree.parse(out / name / "junit.xml").getroot()
+            suites = ElementTree.parse(out / "students" / name / "junit.xml").getroot()
             cases = list(suites.iter("testcase"))
             bad = [c for c in cases if c.find("failure") is not None or c.find("error") is not
                    None]
@@ -337,6 +338,9 @@ def main():
         check(len(per_question) == len(questions) and per_question[0][1].endswith(
             f"/{len(names)} ({sum(score[n]['Q5'] == full['Q5'] for n in names) / len(names):.0%})"),
             f"report.html's pass rates: {per_question[:1]}")
+        for name in names:
+            check(f"href='students/{name}/results.json'" in report,
+                  f"report.html does not link to {name}'s results.json")
         check("What the class got wrong" in report and "Newton" in report and
               "<script" not in report and "http" not in report,
               "report.html: no frequent failure of Q5 (Newton's third law), or a script or link")

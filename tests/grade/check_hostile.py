@@ -32,9 +32,9 @@ eve-reads and an honest student again with bubblewrap refused (CLOTHLAB_GRADE_CO
 as in Docker): the fallback still reads nothing and says which confinement held.
 
 The forged verdict (an atexit handler that rewrites GoogleTest's XML) and the in-memory patch of
-GoogleTest need the question tests split into a runner (the student's code) and a checker (the
-assertions): they are graded too, and required to earn nothing only when tests/lab has that
-split (CLOTHLAB_LAB_RUNNER); until then their result is printed as KNOWN (not yet held).
+GoogleTest are graded too: they earn nothing, the verdict being the checker's (tests/lab's
+checker and runner). The attacks on the grader itself (a fake checker, the kit poisoned, a
+daemon, names that collide or read as options, ...) are in check_hostile_kit.py.
 Runs as root (the grader's unprivileged user and its cgroup); skipped otherwise.
 """
 import csv
@@ -142,7 +142,7 @@ def main():
 
         subs.append(maker.copy("alice", cls))
         reads = [root / "docs/answers.md", root / COUPLED, cls / "alice" / COUPLED,
-                 out / "alice" / "results.json", kit / "base/copy/CMakeLists.txt",
+                 out / "students" / "alice" / "results.json", kit / "base/copy/CMakeLists.txt",
                  kit / "manifest.json", "/etc/shadow", outside / "host.sock"]
         opens = "\n".join(f"    if (std::FILE* f = std::fopen({c_string(p)}, \"r\")) {{\n"
                           "      std::fclose(f);\n      return true;\n    }" for p in reads)
@@ -249,8 +249,8 @@ def main():
         teacher_before = subprocess.run(["git", "-C", root, "status", "--porcelain"],
                                         capture_output=True, text=True).stdout
         env = dict(os.environ, **{secret: "the grader's secret", "CLOTHLAB_GRADE_UID": str(UID)})
-        graded = run([root / "scripts/grade", *subs, "--out", out, "--work", kit,
-                      "--scratch-size", "300"], env=env)
+        graded = run([root / "scripts/grade", "--out", out, "--work", kit, "--scratch-size",
+                      "300", "--", *subs], env=env)
         print(graded.stdout + graded.stderr[-8000:])
         if not check(graded.returncode == 0, "scripts/grade failed on the hostile class"):
             return 1
@@ -272,8 +272,9 @@ def main():
                 print(f"KNOWN (fallback): {message}")
             return True
 
-        names = {p.name: json.loads((p / "results.json").read_text()) for p in out.iterdir()
-                 if (p / "results.json").is_file()}
+        students = out / "students"
+        names = {p.name: json.loads((p / "results.json").read_text())
+                 for p in students.iterdir() if (p / "results.json").is_file()}
         print("graded:", ", ".join(f"{n} {r['score']:g}" for n, r in sorted(names.items())))
 
         def score(name):
@@ -293,14 +294,14 @@ def main():
                 f"{eve} should earn nothing, got {score(eve)}: {q5(eve).get('output', '')[:800]}")
         answers_line = next(line for line in (root / "docs/answers.md").read_text().splitlines()
                             if len(line.strip()) > 20)
-        everything = "\n".join((p / "results.json").read_text() for p in out.iterdir()
+        everything = "\n".join((p / "results.json").read_text() for p in students.iterdir()
                                if p.is_dir()) + (out / "grades.csv").read_text() + \
             (out / "report.html").read_text()
         check(answers_line not in everything and "root:" not in everything and
               "the grader's secret" not in everything,
               "a line of docs/answers.md, /etc/passwd or the grader's environment is in the "
               "outputs")
-        others = "\n".join((p / "results.json").read_text() for p in out.iterdir()
+        others = "\n".join((p / "results.json").read_text() for p in students.iterdir()
                            if p.is_dir() and p.name != "eve-incbin")  # (its own line quotes it)
         check(str(root) not in others, "the teacher's tree's path is in the outputs")
         check_with_namespaces("/var/tmp/clothlab-grade" not in everything and
@@ -339,12 +340,12 @@ def main():
         zero = maker.copy("eve-dev-zero", cls, maker.stubs)
         attack_file(maker, zero, '#include "/dev/zero"', "    return false;")
         began = time.monotonic()
-        graded = run([root / "scripts/grade", forever, zero, "--out", work / "out-forever",
-                      "--work", kit, "--build-timeout", "20"], env=env)
+        graded = run([root / "scripts/grade", "--out", work / "out-forever", "--work", kit,
+                      "--build-timeout", "20", "--", forever, zero], env=env)
         spent = time.monotonic() - began
         print(graded.stderr[-3000:])
         for name in ("eve-forever", "eve-dev-zero"):
-            result = json.loads((work / "out-forever" / name / "results.json").read_text())
+            result = json.loads((work / "out-forever" / "students" / name / "results.json").read_text())
             check(result["score"] == 0, f"{name}: {result['score']}")
         check(spent < 200, f"two compiles stopped at 20 s took {spent:.0f} s to grade")
         check(not sandbox_processes(), f"a compiler outlived its build: {sandbox_processes()}")
@@ -354,8 +355,8 @@ def main():
         mode = root.stat().st_mode
         os.chmod(root, mode & ~0o007)
         try:
-            fallback = run([root / "scripts/grade", cls / "eve-reads", cls / "alice", "--out",
-                            work / "out-user", "--work", kit],
+            fallback = run([root / "scripts/grade", "--out", work / "out-user", "--work", kit,
+                            "--", cls / "eve-reads", cls / "alice"],
                            env=dict(env, CLOTHLAB_GRADE_CONFINEMENT="user"))
         finally:
             os.chmod(root, mode)
@@ -366,16 +367,14 @@ def main():
         elif check(fallback.returncode == 0, "the fallback grading failed"):
             check("an unprivileged user and resource limits" in fallback.stderr,
                   "the fallback does not say which confinement held")
-            results = {n: json.loads((work / "out-user" / n / "results.json").read_text())
+            results = {n: json.loads((work / "out-user" / "students" / n / "results.json").read_text())
                        for n in ("eve-reads", "alice")}
             check(results["alice"]["score"] == 80 and results["eve-reads"]["score"] == 0,
                   f"fallback: alice {results['alice']['score']}, eve-reads "
                   f"{results['eve-reads']['score']}")
 
-        # The verdict out of the student's process: needs tests/lab's runner and checker.
-        split = any("CLOTHLAB_LAB_RUNNER" in p.read_text(errors="replace")
-                    for p in (root / "tests/lab").glob("*") if p.is_file())
-        verdicts(maker, cls, work, kit, root, split)
+        # The verdict out of the student's process: tests/lab's runner and checker.
+        verdicts(maker, cls, work, kit, root)
     finally:
         print(f"check_hostile: {time.monotonic() - started:.0f} s")
         shutil.rmtree(outside, ignore_errors=True)
@@ -435,24 +434,19 @@ PATCH_BODY = """    if (&clothlab_add_result == nullptr)
     return false;"""
 
 
-def verdicts(maker, cls, work, kit, root, split):
-    """A forged XML and an in-memory patch of GoogleTest: 0 once the verdict is out of the
+def verdicts(maker, cls, work, kit, root):
+    """A forged XML and an in-memory patch of GoogleTest: 0, the verdict being out of the
     student's process."""
     forged = maker.copy("eve-forged-xml", cls, maker.stubs)
     attack_file(maker, forged, FORGE_PRELUDE, FORGE_BODY)
     patched = maker.copy("eve-patch", cls, maker.stubs)
     attack_file(maker, patched, PATCH_PRELUDE, PATCH_BODY)
-    run([root / "scripts/grade", forged, patched, "--out", work / "out-verdicts", "--work", kit],
-        env=dict(os.environ, CLOTHLAB_GRADE_UID=str(UID)))
+    run([root / "scripts/grade", "--out", work / "out-verdicts", "--work", kit, "--", forged,
+         patched], env=dict(os.environ, CLOTHLAB_GRADE_UID=str(UID)))
     for name in ("eve-forged-xml", "eve-patch"):
-        path = work / "out-verdicts" / name / "results.json"
+        path = work / "out-verdicts" / "students" / name / "results.json"
         got = json.loads(path.read_text())["score"] if path.exists() else None
-        if split:
-            check(got == 0, f"{name}: a forged verdict earned {got}")
-        else:
-            print(f"KNOWN (not yet held): {name} earns {got}; the runner/checker split of "
-                  "tests/lab (CLOTHLAB_LAB_RUNNER) makes it 0 and this check required")
-
+        check(got == 0, f"{name}: a forged verdict earned {got}")
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -2,7 +2,8 @@
 // wind direction), on the CPU (spring_mesh::compute_force) and on the GPU (shaders/gpu_step.frag).
 // The springs are off (stiffness 0) or at rest, so the wind is the only force. Every case is
 // checked on both paths: the flat cloth, the tilted cloth (<n, u_w> < 0), the wind opposite the
-// normal, a curved cloth whose normals all differ, and no wind.
+// normal, a curved cloth whose normals all differ, and no wind. Tolerances: float_rounding of the
+// wind force K_w (lab_check.hpp), in single or double precision.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -86,19 +87,31 @@ std::vector<glm::dvec3> expected_wind(const spring_mesh& cloth, double K_w,
 
 using lab::gpu_forces;  // one GPU step's force on each texel (gl_fixture.hpp)
 
-constexpr double gpu_tolerance = 1e-4;  // N, single precision
+// The rounding of a wind force of strength K_w, in single or double precision (the GPU's normals
+// are single precision: a rounding of the same size).
+double wind_tolerance(double K_w) {
+  return lab::rounding(K_w);
+}
+
+// What a wind force of the wrong sign says.
+const std::string reversed_wind =
+    "the wind force has the wrong sign: F_w = K_w <n, u_w> n pushes the cloth towards the side "
+    "the wind blows to, along the normal; <n, u_w> is negative where the wind meets the other "
+    "side of the cloth, and keeps its sign";
 
 // Flat cloth: n = (0, 0, 1). Direction (0, 3, 4) -> u_w = (0, 0.6, 0.8), <n, u_w> = 0.8, and
 // with K_w = 3 every vertex feels F_w = 3 * 0.8 * (0, 0, 1) = (0, 0, 2.4).
 TEST(Q13Wind, AFlatClothFeelsTheWindAlongItsNormal) {
   spring_mesh cloth(windy_cloth(3.0, {0, 3, 4}));
   cloth.compute_force();
-  LAB_EXPECT_EVERY_VEC(k, cloth.particles().size(), cloth.particles().get_force(k),
-                       glm::dvec3(0, 0, 2.4), 1e-12,
-                       "Q13: on the flat cloth (n = (0, 0, 1)) a wind of strength K_w = 3 blowing "
-                       "along (0, 3, 4) (u_w = (0, 0.6, 0.8) once normalised) pushes every vertex "
-                       "with K_w <n, u_w> n = (0, 0, 2.4); vertex " +
-                           std::to_string(k));
+  LAB_EXPECT_EVERY_FORCE(
+      k, cloth.particles().size(), cloth.particles().get_force(k), glm::dvec3(0, 0, 2.4),
+      wind_tolerance(3.0),
+      "Q13: on the flat cloth (n = (0, 0, 1)) a wind of strength K_w = 3 blowing "
+      "along (0, 3, 4) (u_w = (0, 0.6, 0.8) once normalised) pushes every vertex "
+      "with K_w <n, u_w> n = (0, 0, 2.4); vertex " +
+          std::to_string(k),
+      "Q13: " + reversed_wind);
 }
 
 // The cloth turned by 30 degrees about x: s(ku, kv) = (x, y cos 30, y sin 30), whose normal is
@@ -110,11 +123,13 @@ TEST(Q13Wind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
   tilt(cloth);
   cloth.compute_force();
   const glm::dvec3 n = {0, -s, c};
-  LAB_EXPECT_EVERY_VEC(
-      k, cloth.particles().size(), cloth.particles().get_force(k), 5.0 * -s * n, 1e-9,
+  LAB_EXPECT_EVERY_FORCE(
+      k, cloth.particles().size(), cloth.particles().get_force(k), 5.0 * -s * n,
+      wind_tolerance(5.0),
       "Q13: a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
       "strength 5 along y should feel K_w <n, u_w> n = (0, 1.25, -2.165); vertex " +
-          std::to_string(k));
+          std::to_string(k),
+      "Q13: " + reversed_wind);
 }
 
 // Flat cloth (n = (0, 0, 1)), wind of strength 4 blowing down along (0, 0, -2), against the
@@ -122,12 +137,14 @@ TEST(Q13Wind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
 TEST(Q13Wind, AWindAgainstTheNormalPushesTheOtherWay) {
   spring_mesh cloth(windy_cloth(4.0, {0, 0, -2}));
   cloth.compute_force();
-  LAB_EXPECT_EVERY_VEC(
-      k, cloth.particles().size(), cloth.particles().get_force(k), glm::dvec3(0, 0, -4), 1e-12,
+  LAB_EXPECT_EVERY_FORCE(
+      k, cloth.particles().size(), cloth.particles().get_force(k), glm::dvec3(0, 0, -4),
+      wind_tolerance(4.0),
       "Q13: a wind blowing down (u_w = (0, 0, -1)) on the flat cloth (n = (0, 0, 1)) "
       "has <n, u_w> = -1 and pushes every vertex DOWN with K_w <n, u_w> n = "
       "(0, 0, -4) (keep the sign of <n, u_w>); " +
-          vertex(k, 4));
+          vertex(k, 4),
+      "Q13: " + reversed_wind);
 }
 
 // The curved cloth (see curve): every vertex feels K_w <n, u_w> n with its own normal.
@@ -138,7 +155,7 @@ TEST(Q13Wind, EveryVertexOfACurvedClothFeelsTheWindOnItsOwnNormal) {
   const std::vector<glm::dvec3> expected = expected_wind(cloth, 3.0, direction);
   cloth.compute_force();
   LAB_EXPECT_EVERY_VEC(k, cloth.particles().size(), cloth.particles().get_force(k), expected[k],
-                       1e-9,
+                       wind_tolerance(3.0),
                        "Q13: on a curved cloth each vertex has its own normal n(ku, kv); a wind of "
                        "strength 3 along (1, 2, 0.5) pushes it with K_w <n, u_w> n, u_w the unit "
                        "direction, along n, towards the side the wind blows (<n, u_w> may be "
@@ -167,7 +184,8 @@ TEST_F(Q13GpuWind, TheGpuStepAddsTheWindAlongTheNormal) {
   gpu.step(p);
   gpu.read_state(cloth);
   LAB_EXPECT_EVERY_VEC(
-      k, cloth.particles().size(), cloth.particles().get_velocity(k), glm::dvec3(0, 0, 0.012), 1e-7,
+      k, cloth.particles().size(), cloth.particles().get_velocity(k), glm::dvec3(0, 0, 0.012),
+      0.01 / 2.0 * wind_tolerance(3.0),
       "Q13 (GPU): the velocity shader should add K_w <n, u_w> n to the force: after "
       "one step of 0.01 s a 2 kg vertex of the flat cloth in a wind of strength 3 "
       "along (0, 3, 4) moves at (0, 0, 0.012); texel " +
@@ -182,12 +200,13 @@ TEST_F(Q13GpuWind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
   tilt(cloth);
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
   const glm::dvec3 n = {0, -0.5, std::cos(M_PI / 6)};
-  LAB_EXPECT_EVERY_VEC(
-      k, force.size(), force[k], 5.0 * -0.5 * n, gpu_tolerance,
+  LAB_EXPECT_EVERY_FORCE(
+      k, force.size(), force[k], 5.0 * -0.5 * n, wind_tolerance(5.0),
       "Q13 (GPU): a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
       "strength 5 along y has <n, u_w> = -0.5 (negative: keep its sign) and should "
       "feel K_w <n, u_w> n = (0, 1.25, -2.165), along n, not along the wind; " +
-          vertex(k, 4));
+          vertex(k, 4),
+      "Q13 (GPU): " + reversed_wind);
 }
 
 // The flat cloth on the GPU in a wind blowing down: F_w = (0, 0, -4).
@@ -195,11 +214,12 @@ TEST_F(Q13GpuWind, AWindAgainstTheNormalPushesTheOtherWay) {
   const cloth_parameters p = windy_cloth(4.0, {0, 0, -2});
   const spring_mesh cloth(p);
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
-  LAB_EXPECT_EVERY_VEC(k, force.size(), force[k], glm::dvec3(0, 0, -4), gpu_tolerance,
-                       "Q13 (GPU): a wind blowing down (u_w = (0, 0, -1)) on the flat cloth "
-                       "(n = (0, 0, 1)) has <n, u_w> = -1 and pushes every texel DOWN with "
-                       "K_w <n, u_w> n = (0, 0, -4); " +
-                           vertex(k, 4));
+  LAB_EXPECT_EVERY_FORCE(k, force.size(), force[k], glm::dvec3(0, 0, -4), wind_tolerance(4.0),
+                         "Q13 (GPU): a wind blowing down (u_w = (0, 0, -1)) on the flat cloth "
+                         "(n = (0, 0, 1)) has <n, u_w> = -1 and pushes every texel DOWN with "
+                         "K_w <n, u_w> n = (0, 0, -4); " +
+                             vertex(k, 4),
+                         "Q13 (GPU): " + reversed_wind);
 }
 
 // The curved cloth on the GPU: each texel's own normal, read from normal_texture at that texel.
@@ -211,7 +231,7 @@ TEST_F(Q13GpuWind, EveryTexelOfACurvedClothFeelsTheWindOnItsOwnNormal) {
   const std::vector<glm::dvec3> expected = expected_wind(cloth, 3.0, direction);
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
   LAB_EXPECT_EVERY_VEC(
-      k, force.size(), force[k], expected[k], gpu_tolerance,
+      k, force.size(), force[k], expected[k], wind_tolerance(3.0),
       "Q13 (GPU): on a curved cloth each texel has its own normal n, read from "
       "normal_texture at this texel k; a wind of strength 3 along (1, 2, 0.5) pushes "
       "it with K_w <n, u_w> n (<n, u_w> may be negative); " +

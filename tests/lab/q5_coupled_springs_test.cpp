@@ -1,6 +1,7 @@
 // Question 5: the coupled springs. coupled_springs::compute_force must give every spring of the
 // chain its force (handout equation 2) on BOTH of its ends. Each expected force is worked out
-// by hand in the comment above its test.
+// by hand in the comment above its test. Tolerances: the rounding of a force computed in single
+// or double precision, float_rounding K |p| per spring (lab_check.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,8 +14,6 @@ namespace {
 
 // The student's classes and functions, run by the lab runner (student.hpp).
 using student::coupled_springs;
-
-using lab::text;
 
 // A chain of n masses with the given positions (particle 0 is the fixed p0).
 coupled_springs chain_at(int n, double K, std::initializer_list<glm::dvec3> positions) {
@@ -31,23 +30,32 @@ coupled_springs chain_at(int n, double K, std::initializer_list<glm::dvec3> posi
 // Two masses, K = 20, L0 = 0.5. p0 = (0.1, 0, 1), p1 = (0.1, 0, 0.5): spring 1 is at its rest
 // length. p2 = (0.1, 0, -0.2): spring 2 has length 0.7, stretched by 0.2. Equation 2 on p2:
 //   F = K (L0 - L) (p2 - p1) / L = 20 (0.5 - 0.7) (0, 0, -0.7) / 0.7 = (0, 0, 4): pulled up;
-// and its reaction on p1: (0, 0, -4), pulled down.
+// and its reaction on p1: (0, 0, -4), pulled down. Positions of size 1: tolerance 2 springs of
+// K |p| = 20.
+constexpr double two_masses_tolerance = 2 * 20.0 * lab::float_rounding;
+
 TEST(Q5CoupledSprings, TheSecondSpringPullsTheSecondMassBack) {
   coupled_springs chain = chain_at(2, 20.0, {{0.1, 0, 1}, {0.1, 0, 0.5}, {0.1, 0, -0.2}});
   chain.compute_force();
-  LAB_EXPECT_VEC(chain.particles().get_force(2), glm::dvec3(0, 0, 4), 1e-9,
-                 "Q5: mass 2 hangs 0.2 m below the rest length of the second spring, which "
-                 "should pull it up with K (L0 - L) = 4 N; is the second spring (p1-p2) in "
-                 "compute_force?");
+  LAB_EXPECT_FORCE(chain.particles().get_force(2), glm::dvec3(0, 0, 4), two_masses_tolerance,
+                   "Q5: mass 2 hangs 0.2 m below the rest length of the second spring, which "
+                   "should pull it up with K (L0 - L) = 4 N; is the second spring (p1-p2) in "
+                   "compute_force?",
+                   "Q5: the stretched second spring pushes mass 2 down instead of pulling it up "
+                   "(the force has the wrong sign): spring_force(a, b, K, L0), equation 2, is the "
+                   "force on the end at a; which end is mass 2?");
 }
 
 TEST(Q5CoupledSprings, TheSecondSpringPullsTheFirstMassDownToo) {
   coupled_springs chain = chain_at(2, 20.0, {{0.1, 0, 1}, {0.1, 0, 0.5}, {0.1, 0, -0.2}});
   chain.compute_force();
-  LAB_EXPECT_VEC(chain.particles().get_force(1), glm::dvec3(0, 0, -4), 1e-9,
-                 "Q5: a spring pulls BOTH of its ends (Newton's third law): the stretched "
-                 "second spring pulls mass 2 up by 4 N and mass 1 down by 4 N, while the first "
-                 "spring, at its rest length, adds nothing");
+  LAB_EXPECT_FORCE(chain.particles().get_force(1), glm::dvec3(0, 0, -4), two_masses_tolerance,
+                   "Q5: a spring pulls BOTH of its ends (Newton's third law): the stretched "
+                   "second spring pulls mass 2 up by 4 N and mass 1 down by 4 N, while the first "
+                   "spring, at its rest length, adds nothing",
+                   "Q5: the second spring pushes mass 1 up instead of pulling it down (the force "
+                   "has the wrong sign): a stretched spring pulls its two ends towards each "
+                   "other, with opposite forces (Newton's third law)");
 }
 
 // Four masses in a zigzag, K = 30; every spring acts on both of its ends, so mass i feels
@@ -63,11 +71,17 @@ TEST(Q5CoupledSprings, EveryMassFeelsTheSpringsAboveAndBelowIt) {
     glm::dvec3 expected = spring_force(p[i], p[i - 1], K, L0);  // spring i, from above
     if (i < 4)
       expected += spring_force(p[i], p[i + 1], K, L0);  // spring i+1, from below
-    LAB_EXPECT_VEC(chain.particles().get_force(std::size_t(i)), expected, 1e-9,
-                   "Q5: in a chain of 4 masses, mass " + std::to_string(i) +
-                       " should feel the spring above it" +
-                       (i < 4 ? std::string(" and the one below it") : std::string()) +
-                       " (equation 2 on each)");
+    LAB_EXPECT_FORCE(chain.particles().get_force(std::size_t(i)), expected,
+                     2 * K * lab::float_rounding,
+                     "Q5: in a chain of 4 masses, mass " + std::to_string(i) +
+                         " should feel the spring above it" +
+                         (i < 4 ? std::string(" and the one below it") : std::string()) +
+                         " (equation 2 on each)",
+                     "Q5: in a chain of 4 masses, mass " + std::to_string(i) +
+                         " feels the force of its springs with the wrong sign: each spring "
+                         "should pull it towards its neighbour when stretched, and push it away "
+                         "when compressed (equation 2: spring_force(a, b, K, L0) is the force "
+                         "on a)");
   }
 }
 
@@ -75,7 +89,8 @@ TEST(Q5CoupledSprings, EveryMassFeelsTheSpringsAboveAndBelowIt) {
 // so v1 = 0, v2 = (1, -1, 0), p1 = (0.1, 0, 0.5), p2 = (0.1 + dt, -dt, 0). Step 2: spring 1 is
 // still at its rest length; spring 2 has d = p1 - p2 = (-dt, dt, 0.5) and pulls both ends
 // together: F1 = K (0.5 - |d|) d / |d| on mass 1, F2 = -F1 on mass 2; v1 = dt F1 / m,
-// v2 = (1, -1, 0) + dt F2 / m.
+// v2 = (1, -1, 0) + dt F2 / m (|dt F1| = 4e-5 m/s). Tolerance: the forces' rounding (2 springs of
+// K |p| = 20), times dt, and the velocity's own (size 1).
 TEST(Q5CoupledSprings, SecondStepMovesBothMassesOfTheSecondSpring) {
   coupled_springs_parameters p;
   p.mass_count = 2;
@@ -87,10 +102,14 @@ TEST(Q5CoupledSprings, SecondStepMovesBothMassesOfTheSecondSpring) {
   const double dt = 0.01;
   const glm::dvec3 d = {-dt, dt, 0.5};
   const glm::dvec3 F1 = 20.0 * (0.5 - glm::length(d)) * d / glm::length(d);
-  LAB_EXPECT_VEC(chain.particles().get_velocity(1), dt * F1, 1e-12,
-                 "Q5: after two steps the second spring has stretched and should have started "
-                 "to move mass 1 sideways");
-  LAB_EXPECT_VEC(chain.particles().get_velocity(2), glm::dvec3(1, -1, 0) - dt * F1, 1e-12,
+  const double tolerance = lab::rounding(2 * 20.0 * dt + 1.0);
+  LAB_EXPECT_FORCE(chain.particles().get_velocity(1), dt * F1, tolerance,
+                   "Q5: after two steps the second spring has stretched and should have started "
+                   "to move mass 1 sideways",
+                   "Q5: after two steps the second spring has stretched, and it pushes mass 1 "
+                   "away from mass 2 instead of pulling it (the force on mass 1 has the wrong "
+                   "sign)");
+  LAB_EXPECT_VEC(chain.particles().get_velocity(2), glm::dvec3(1, -1, 0) - dt * F1, tolerance,
                  "Q5: after two steps the second spring should have slowed mass 2");
 }
 

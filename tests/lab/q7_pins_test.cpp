@@ -1,6 +1,12 @@
-// Question 7: spring_mesh::load_model pins two corners of the cloth, s(0, 0) and s(N-1, 0):
-// their is_fixed flag is set, so that apply_force never moves them.
+// Question 7: two corners of the cloth are pinned (handout: "Fixez deux sommets des coins du
+// tissu", any two of the four). An answer may mark them in load_model (particles_.is_fixed) or
+// leave them out in apply_force, as the handout's section 4.3 suggests ("il suffit de ne jamais
+// mettre a jour ses coordonnees"): load_model marks as fixed every vertex that apply_force never
+// moves, so is_fixed names the pins either way. With --pins none, nothing is pinned.
 #include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
 
 #include "lab_check.hpp"
 #include "student.hpp"
@@ -11,45 +17,82 @@ namespace {
 // The student's classes and functions, run by the lab runner (student.hpp).
 using student::spring_mesh;
 
-TEST(Q7Pins, TheTwoCornersOfTheFirstRowArePinned) {
-  cloth_parameters p;
-  p.grid_size = 6;
-  spring_mesh cloth(p);
-  const auto& fixed = cloth.particles().is_fixed;
-  LAB_EXPECT_TRUE(fixed[spring_mesh::index(0, 0, 6)],
-                  "Q7: the corner s(0, 0) (index 0) should be fixed: is_fixed[0] = 1 in "
-                  "load_model");
-  LAB_EXPECT_TRUE(fixed[spring_mesh::index(5, 0, 6)],
-                  "Q7: the corner s(N-1, 0) (index N-1 = 5 for N = 6) should be fixed");
+// "s(5, 0)"
+std::string vertex(std::size_t k, int n) {
+  return "s(" + std::to_string(k % std::size_t(n)) + ", " + std::to_string(k / std::size_t(n)) +
+         ")";
 }
 
-TEST(Q7Pins, NoOtherVertexIsPinned) {
-  cloth_parameters p;
-  p.grid_size = 6;
-  spring_mesh cloth(p);
-  int pinned = 0;
-  for (std::uint8_t f : cloth.particles().is_fixed)
-    pinned += f != 0;
-  LAB_EXPECT_TRUE(pinned == 2,
-                  "Q7: exactly two vertices, the corners s(0, 0) and s(N-1, 0), are pinned by "
-                  "default")
-      << "; " << pinned << " are";
+bool is_corner(std::size_t k, int n) {
+  const std::size_t ku = k % std::size_t(n), kv = k / std::size_t(n), last = std::size_t(n - 1);
+  return (ku == 0 || ku == last) && (kv == 0 || kv == last);
 }
 
-// The pinned corners stay where they were, exactly, while the cloth hangs and swings for 200
-// steps (their velocity stays 0).
+std::vector<std::size_t> pinned_vertices(const spring_mesh& cloth) {
+  std::vector<std::size_t> pinned;
+  for (std::size_t k = 0; k < cloth.particles().size(); ++k)
+    if (cloth.particles().is_fixed[k])
+      pinned.push_back(k);
+  return pinned;
+}
+
+// At two grid sizes (an index written for one N only is not a corner at the other): exactly two
+// vertices are pinned, and both are corners.
+TEST(Q7Pins, TwoCornersArePinned) {
+  for (const int n : {6, 3}) {
+    cloth_parameters p;
+    p.grid_size = n;
+    const spring_mesh cloth(p);
+    const std::vector<std::size_t> pinned = pinned_vertices(cloth);
+    const std::string corners = "s(0, 0), s(N-1, 0), s(0, N-1) and s(N-1, N-1), indices 0, " +
+                                std::to_string(n - 1) + ", " + std::to_string(n * (n - 1)) +
+                                " and " + std::to_string(n * n - 1) +
+                                " for N = " + std::to_string(n);
+    std::string names;
+    for (std::size_t k : pinned)
+      names += (names.empty() ? "" : ", ") + vertex(k, n);
+    LAB_EXPECT_TRUE(!pinned.empty(),
+                    "Q7: no vertex of the cloth is pinned (N = " + std::to_string(n) +
+                        "): fix two of its corners, " + corners +
+                        " (mark them in particles_.is_fixed in load_model, or never update them "
+                        "in apply_force)");
+    if (pinned.empty())
+      continue;
+    std::size_t not_corner = pinned.size();
+    for (std::size_t i = 0; i < pinned.size(); ++i)
+      if (!is_corner(pinned[i], n) && not_corner == pinned.size())
+        not_corner = i;
+    LAB_EXPECT_TRUE(not_corner == pinned.size(),
+                    "Q7: the pinned vertex " +
+                        (not_corner < pinned.size() ? vertex(pinned[not_corner], n) : "") +
+                        " is not a corner of the N = " + std::to_string(n) +
+                        " cloth; its corners are " + corners + " (k = ku + N kv)");
+    LAB_EXPECT_TRUE(pinned.size() == 2,
+                    "Q7: pin exactly two corners of the cloth; at N = " + std::to_string(n) + ", " +
+                        std::to_string(pinned.size()) + " vertices are: " + names);
+  }
+}
+
+// The pinned corners stay where they were, exactly, with a zero velocity, while the cloth hangs
+// and swings for 200 steps.
 TEST(Q7Pins, PinnedCornersStayExactlyInPlaceWhileTheClothHangs) {
   cloth_parameters p;
   p.grid_size = 5;
   spring_mesh cloth(p);
-  const glm::dvec3 corner_a = cloth.particles().get_position(0);
-  const glm::dvec3 corner_b = cloth.particles().get_position(4);
+  const std::vector<std::size_t> pinned = pinned_vertices(cloth);
+  LAB_ASSERT_TRUE(!pinned.empty(), "Q7: no vertex of the cloth is pinned: fix two corners");
+  std::vector<glm::dvec3> start;
+  for (std::size_t k : pinned)
+    start.push_back(cloth.particles().get_position(k));
   for (int s = 0; s < 200; ++s)
     cloth.step();
-  LAB_EXPECT_VEC(cloth.particles().get_position(0), corner_a, 0.0,
-                 "Q7: the pinned corner s(0, 0) moved while the cloth hangs");
-  LAB_EXPECT_VEC(cloth.particles().get_position(4), corner_b, 0.0,
-                 "Q7: the pinned corner s(N-1, 0) moved while the cloth hangs");
+  for (std::size_t i = 0; i < pinned.size(); ++i) {
+    LAB_EXPECT_VEC(cloth.particles().get_position(pinned[i]), start[i], 0.0,
+                   "Q7: the pinned corner " + vertex(pinned[i], 5) +
+                       " moved while the cloth hangs (200 steps)");
+    LAB_EXPECT_VEC(cloth.particles().get_velocity(pinned[i]), glm::dvec3(0.0), 0.0,
+                   "Q7: the pinned corner " + vertex(pinned[i], 5) + " keeps a zero speed");
+  }
 }
 
 TEST(Q7Pins, PinsNoneLeavesEveryVertexFree) {
@@ -59,7 +102,9 @@ TEST(Q7Pins, PinsNoneLeavesEveryVertexFree) {
   spring_mesh cloth(p);
   for (std::size_t k = 0; k < cloth.particles().size(); ++k)
     LAB_EXPECT_TRUE(!cloth.particles().is_fixed[k],
-                    "Q7: with --pins none no vertex is fixed; vertex " + std::to_string(k) + " is");
+                    "Q7: with --pins none (parameters.pins == pin_mode::none) no vertex is "
+                    "pinned; " +
+                        vertex(k, 4) + " is (marked in is_fixed, or never moved by apply_force)");
 }
 
 }  // namespace

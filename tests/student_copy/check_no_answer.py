@@ -14,6 +14,12 @@ level, and the check that says so can fail. Usage: check_no_answer.py PROJECT_RO
 4. The copy offers nothing to call instead of answering: none of the helpers that answered a
    question in one call is declared in its headers, and the parallel CPU path is a stub that
    names the teacher's copy.
+5. Only what git tracks is shipped: in a teacher's checkout that holds a compiler's cache
+   (.ccache/, as the Classroom workflow leaves it, and a ccache folder) with the solution's
+   objects, and a stray object file beside the sources, the student copy and the Gradescope
+   bundle (scripts/grade --gradescope-bundle) hold no object file, no cache folder and no line
+   of any solution region; the bundle holds the grader's tracked files and the copy, nothing
+   else.
 Exit 0 when all of this holds; otherwise every failed check is listed.
 """
 import importlib.machinery
@@ -23,6 +29,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import zipfile
 from pathlib import Path
 
 problems = []
@@ -62,6 +69,90 @@ PLANTED = [
 REMOVED_CALLS = [r"\bintegrate\s*\(", r"\bcompute_spring_forces\s*\(",
                  r"\baccumulate_spring_forces\s*\(", r"\brest_length\s*\(\s*(std::size_t|"
                  r"spring_family)", r"\bjoined\s*\(", r"\bL0\s*\("]
+
+
+def tracked_tree(root, generator, dest):
+    """A checkout of the project's tracked files (as they are in root's work tree) at dest: a
+    git repository whose index holds them."""
+    for name in generator.project_files():
+        target = dest / name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(root / name, target)
+    subprocess.run(["git", "init", "-q", str(dest)], check=True)
+    subprocess.run(["git", "-C", str(dest), "add", "-A"], check=True)
+    return dest
+
+
+# Where a compiler's cache and stray objects sit in a teacher's checkout: the Classroom
+# workflow's .ccache/, a ccache folder, an object beside the sources, a build folder.
+UNTRACKED = (".ccache/0/a/spring_mesh.cpp.o", ".ccache/ccache.conf", "ccache/b/coupled.o",
+             "src/core/spring_mesh.cpp.o",
+             "build-old/src/core/coupled_springs.cpp.o")
+
+
+def untracked_stay_home(root, generator, work):
+    tree = tracked_tree(root, generator, work / "teacher")
+    solutions = {}
+    for name in generator.project_files():
+        if Path(name).suffix in (".cpp", ".frag", ".glsl", ".comp") and \
+                "BEGIN SOLUTION" in (root / name).read_text(errors="replace"):
+            regions = []
+            generator.transform(name, (root / name).read_text(), set(), regions)
+            for question, _, _, _, solution, stub in regions:
+                stubs = {line.strip() for line in stub}
+                solutions.update({line.strip(): f"{question} ({name})" for line in solution
+                                  if _regions_significant(generator, line) and
+                                  line.strip() not in stubs})
+    leak = "\n".join(solutions).encode()
+    for name in UNTRACKED:
+        (tree / name).parent.mkdir(parents=True, exist_ok=True)
+        (tree / name).write_bytes(b"\x7fELF objects of the solution\n" + leak)
+    copy = work / "copy-untracked"
+    made = generate(tree, copy)
+    bundle = work / "autograder.zip"
+    bundled = subprocess.run([sys.executable, str(tree / "scripts/grade"), "--gradescope-bundle",
+                              str(bundle)], capture_output=True, text=True)
+    if not check(made.returncode == 0 and bundled.returncode == 0,
+                 f"the copy or the bundle of a checkout with a cache was not made:\n"
+                 f"{made.stderr[-1500:]}{bundled.stderr[-1500:]}"):
+        return
+    shipped = {f"copy/{p.relative_to(copy).as_posix()}": p.read_bytes()
+               for p in copy.rglob("*") if p.is_file()}
+    with zipfile.ZipFile(bundle) as archive:
+        shipped.update({f"bundle/{n}": archive.read(n) for n in archive.namelist()
+                        if not n.endswith("/")})
+    for name, data in sorted(shipped.items()):
+        parts = name.split("/")
+        check(not name.endswith((".o", ".obj", ".a")) and
+              not any("ccache" in part.lower() for part in parts),
+              f"{name}: an object file or a compiler's cache reached the student copy or the "
+              "bundle")
+        text = data.decode("utf-8", "replace")
+        found = [line for line in text.splitlines() if line.strip() in solutions]
+        # A region's first line (the grader's package only describes one, in its comments).
+        marker = "/clothlab_lab/" not in name and any(
+            generator._regions.BEGIN.match(line) for line in text.splitlines())
+        check(b"objects of the solution" not in data and not found and not marker,
+              f"{name}: holds a solution region or line ({found[:1]} of "
+              f"{solutions.get(found[0].strip()) if found else 'a region'})")
+    # The bundle: setup.sh, run_autograder, the grader's tracked files, the kit generated.
+    package = [n for n in generator.project_files() if n.startswith("scripts/clothlab_lab/")]
+    expected = {"setup.sh", "run_autograder", "clothlab-grade/grade",
+                "clothlab-grade/manifest.json"}
+    expected |= {"clothlab-grade/clothlab_lab/" + n[len("scripts/clothlab_lab/"):]
+                 for n in package}
+    # (the kit's copy leaves out what no build reads: .git*, build*, out*, Testing)
+    expected |= {f"clothlab-grade/base/copy/{n[len('copy/'):]}" for n in shipped
+                 if n.startswith("copy/") and not n[len("copy/"):].startswith(
+                     (".git", "build", "out", "Testing"))}
+    expected |= {f"clothlab-grade/stubs/{n}" for n in generator.LAB.student_files}
+    got = {n[len("bundle/"):] for n in shipped if n.startswith("bundle/")}
+    check(got == expected, f"the bundle holds {sorted(got - expected)[:8]} beyond the grader's "
+                           f"tracked files and the copy, and lacks {sorted(expected - got)[:8]}")
+
+
+def _regions_significant(generator, line):
+    return generator._regions.significant(line)
 
 
 def generate(root, dest, *options):
@@ -107,11 +198,7 @@ def main():
                   "the copy has the Python reference model or the compute shader")
 
         # 2. Planted leaks are refused, naming the file and the question.
-        tree = work / "planted"
-        for name in generator.project_files():
-            target = tree / name
-            target.parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(root / name, target)
+        tree = tracked_tree(root, generator, work / "planted")
         for question, name, line in PLANTED:
             path = tree / name
             original = path.read_text()
@@ -143,6 +230,8 @@ def main():
                 elif question != "Q13":  # the handout itself gives question 13's formula
                     check(found, f"the guided TODO of {question} spells out its steps, yet the "
                                  "answer check finds nothing in it: the check cannot fail")
+        # 5. Untracked files of the teacher's checkout ship nowhere.
+        untracked_stay_home(root, generator, work)
     finally:
         if not problems:
             shutil.rmtree(work, ignore_errors=True)

@@ -168,8 +168,10 @@ check_image() {
   echo "window test: $file: $size, $colours colours, deviation $spread"
 }
 
-# The cloth is in the picture: the red squares of its texture cover at least 1 % of the scene
-# right of the panel (the ground and the sky have no red). Lit or in its own shade, front or
+# The cloth is in the picture: the red squares of its texture cover at least 0.2 % of the scene
+# right of the panel (the ground and the sky have none; the default cloth hanging from its near
+# corners shows about 1 %, one hanging from two opposite corners, as question 7 allows, 0.37 %
+# under a load of 5, much of it its darker back). Lit or in its own shade, front or
 # back (tinted) side: the cloth flapping in the wind shows either, depending on the moment of
 # the screenshot (a test that counted only the lit front's red failed when a screenshot came a
 # second earlier).
@@ -179,7 +181,7 @@ check_cloth_drawn() {
   red=$(convert "$file" -crop 840x800+440+0 +repage -sample 25% \
     -fx "r > 0.45 && r > g + 0.2 && r > b + 0.12" -format "%[fx:mean]" info:) ||
     fail "cannot read $file"
-  awk -v f="$red" 'BEGIN { exit !(f > 0.01) }' || fail "$file shows no cloth (red fraction $red)"
+  awk -v f="$red" 'BEGIN { exit !(f > 0.002) }' || fail "$file shows no cloth (red fraction $red)"
   echo "window test: $file: the cloth's red covers $red of the scene"
 }
 
@@ -518,7 +520,9 @@ $french_layout"
     # saw it), then the chain runs while the mouse moves, and the button is released. The drag
     # spring (K_d = 1000 N/m) holds the mass near the target: it ends nearer to the target than
     # a quarter of the way the target went from where it was grabbed.
-    press_and_pull coupled mass_point mass 3
+    # Held until the target has been still for 3 s of simulated time (under load the window
+    # runs far fewer steps a second of wall time), at most 40 s.
+    press_and_pull coupled mass_point mass 40 "still for 3 s of simulated time"
     grabbed=$(grep "grabbed mass" window.log | tail -n 1)
     released=$(grep "released mass" window.log | tail -n 1) || fail "no 'released mass' line"
     from=$(vector_after "at" "$grabbed")
