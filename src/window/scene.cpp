@@ -322,6 +322,7 @@ void scene::count_grab_stillness(double time_step) {
   const double before = grab_still_seconds_;
   grab_still_seconds_ += time_step;
   if (std::floor(grab_still_seconds_) > std::floor(before)) {
+    // (not translated: read by the window tests)
     std::printf("clothlab-window: the grab's target has been still for %.0f s of simulated time\n",
                 std::floor(grab_still_seconds_));
     std::fflush(stdout);
