@@ -6,8 +6,8 @@
 Reads the C++ of src/ (or the files given) and flags each string literal that is shown to a
 person but not wrapped in tr(), trn(), N_() or ui_label(): the labels and texts of Dear ImGui's
 calls and of the panel's widgets, what is printed (printf, fprintf, puts, std::cout, std::cerr,
-report), the messages of errors (usage_error, an `error` string, an exception) and the command
-line's descriptions (CLI11's add_option, add_flag). A heuristic: a literal is text when it holds a
+report), the messages of errors (usage_error, an `error` string, an exception), the question
+tests' hints (LAB_EXPECT_*, LAB_ASSERT_*, tests/lab/) and the command line's descriptions (CLI11's add_option, add_flag). A heuristic: a literal is text when it holds a
 word (two letters or more) that is not a name of the code's world: an option (--dt), a file
 (spring_mesh.cpp), a GL or C++ name (GL_RGBA32F, std::chrono, spring_mesh::step), a unit, a
 format directive. Left alone, on purpose:
@@ -36,6 +36,8 @@ SHOWN = [
     r"(?:std::)?printf", r"(?:std::)?puts", r"(?:std::)?snprintf", r"report", r"format",
     # errors
     r"usage_error", r"std::runtime_error", r"std::invalid_argument",
+    # the question tests' hints (tests/lab/lab_check.hpp)
+    r"LAB_(?:EXPECT|ASSERT)_\w+",
     # the command line's descriptions
     r"(?:\w+(?:\.|->))?add_option", r"(?:\w+(?:\.|->))?add_flag",
     r"(?:\w+(?:\.|->))?set_version_flag", r"(?:\w+(?:\.|->))?set_help_flag",

@@ -9,9 +9,11 @@ of French before the colon, no English TODO of the same level left, lines within
 columns of .clang-format), README.md's tasks are "Vos tâches", and the copy's catalogues hold
 no TODO (the other level's hints are not the student's to read). The English copy's TODOs are
 the sources' STUDENT(handout)| lines, word for word, under "Your tasks". With --build, the
-handout-level French copy is configured and its program built, and a headless run of the GPU
-path compiles the shaders whose comments are French. Exit 1 with each problem found.
+handout-level French copy is configured and its program built, a headless run of the GPU path
+compiles the shaders whose comments are French, and the tests of question 8, unanswered, fail
+with their hints in French under LANG=fr_FR.UTF-8. Exit 1 with each problem found.
 """
+import os
 import re
 import subprocess
 import sys
@@ -131,7 +133,8 @@ def check_english(root, copy):
 def check_build(copy, work):
     build = work / "build-fr"
     for command in (["cmake", "-S", copy, "-B", build, "-DCMAKE_BUILD_TYPE=Release"],
-                    ["cmake", "--build", build, "-j", "2", "--target", "clothlab"],
+                    ["cmake", "--build", build, "-j", "2", "--target", "clothlab", "lab_runner",
+                     "lab_q8_tests"],
                     [build / "clothlab", "--headless", "--stage", "cloth", "--backend", "gpu",
                      "--steps", "5", "--lang", "fr"]):
         done = subprocess.run([str(c) for c in command], capture_output=True, text=True,
@@ -139,6 +142,18 @@ def check_build(copy, work):
         if not check(done.returncode == 0, f"the French copy: {' '.join(map(str, command))} "
                                            f"failed:\n{(done.stdout + done.stderr)[-3000:]}"):
             return
+    # Question 8 unanswered, under a French locale: its tests fail with the hints in French.
+    environment = {k: v for k, v in os.environ.items()
+                   if k not in ("LANGUAGE", "LC_ALL", "LC_MESSAGES", "LANG")}
+    q8 = subprocess.run(["ctest", "--test-dir", str(build), "-L", "q8", "--output-on-failure"],
+                        capture_output=True, text=True, timeout=600,
+                        env=dict(environment, LANG="fr_FR.UTF-8"))
+    output = q8.stdout + q8.stderr
+    check(q8.returncode != 0, "the French copy's Q8 tests pass on the stub")
+    for words in ("Q8, ressorts structurels\u00a0: s(2, 1), écarté de 0.5 m de s(1, 1)",
+                  "attendu ("):
+        check(words in output, f"the French copy's Q8 hints do not say '{words}':\n"
+                               f"{output[-3000:]}")
 
 
 def main():
