@@ -120,7 +120,7 @@ int run_headless(const options& o) {
       out.close(false, false, error);
       return exit_failure;
     }
-    std::printf("clothlab: OpenGL: %s, %s\n", context->description().c_str(),
+    std::printf(tr("clothlab: OpenGL: %s, %s\n"), context->description().c_str(),
                 context->origin().c_str());
   }
 

@@ -74,7 +74,7 @@ void tear_report::check(const spring_mesh& cloth, long step, double time) {
     return;
   reported_ = true;
   std::printf(
-      "clothlab-window: %s\n",
+      tr("clothlab-window: %s\n"),
       format(tr("the cloth began to tear by step %ld (t = %.3f s): %zu of %zu springs left"), step,
              time, springs, whole)
           .c_str());

@@ -340,7 +340,7 @@ void scene::report_divergence(divergence_status check) {
     status.divergence_advice =
         format(tr("dt omega_max = %.3g: %s"), current_time_step() * estimate.omega_max,
                estimate.explanation.c_str());
-    std::printf("clothlab-window: %s\n",
+    std::printf(tr("clothlab-window: %s\n"),
                 format(tr("%s diverged at step %ld (t = %g s): %s; %s"), stage_in_words(stage_),
                        status.step, status.time, status.divergence_reason.c_str(),
                        status.divergence_advice.c_str())
@@ -419,9 +419,9 @@ void scene::check_in_view() {
     return fell_below_view(view, aspect, stage.particles().position);
   });
   if (fell_out_of_view_ && !was_out) {
-    std::printf("clothlab-window: %s\n", format(tr("%s fell out of view at t = %.2f s"),
-                                                stage_in_words(stage_), status().time)
-                                             .c_str());
+    std::printf(tr("clothlab-window: %s\n"), format(tr("%s fell out of view at t = %.2f s"),
+                                                    stage_in_words(stage_), status().time)
+                                                 .c_str());
     std::fflush(stdout);
   }
 }

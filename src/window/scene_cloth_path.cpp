@@ -57,7 +57,7 @@ void scene::switch_cloth_backend(cloth_backend target) {
   if (on_gpu(target) && !gpu_can_run(target, why)) {
     backend_message_ =
         format(tr("The cloth stays on the %s: %s"), tr(backend_name(from)), why.c_str());
-    std::printf("clothlab-window: %s\n", backend_message_.c_str());
+    std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
     std::fflush(stdout);
     return;
   }
@@ -66,14 +66,14 @@ void scene::switch_cloth_backend(cloth_backend target) {
   read_gpu_state();
   if (!paths_.load(target, why)) {  // the cloth is then on the CPU path
     backend_message_ = format(tr("The cloth went to the CPU: %s"), why.c_str());
-    std::printf("clothlab-window: %s\n", backend_message_.c_str());
+    std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
     std::fflush(stdout);
     return;
   }
   rates_.restart();  // the stepping rate shown is the new path's
   backend_message_ = format(tr("cloth: %s -> %s at step %ld"), tr(backend_name(from)),
                             tr(backend_name(target)), step);
-  std::printf("clothlab-window: %s\n", backend_message_.c_str());
+  std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
   std::fflush(stdout);
 }
 
@@ -102,7 +102,7 @@ void scene::fall_back_to_cpu(const std::string& reason) {
   paths_.load(cloth_backend::cpu, none);  // loads nothing: the CPU cloth holds the state now
   backend_message_ = format(tr("cloth: %s -> CPU at step %ld: %s"), tr(backend_name(from)),
                             status_[static_cast<int>(stage_kind::cloth)].step, reason.c_str());
-  std::printf("clothlab-window: %s\n", backend_message_.c_str());
+  std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
   std::fflush(stdout);
 }
 
@@ -115,7 +115,7 @@ void scene::reload_gpu_cloth() {
     std::string none;
     paths_.load(cloth_backend::cpu, none);  // the cloth goes on from its new state on the CPU
     backend_message_ = format(tr("The cloth went back to the CPU: %s"), why.c_str());
-    std::printf("clothlab-window: %s\n", backend_message_.c_str());
+    std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
     std::fflush(stdout);
   }
 }

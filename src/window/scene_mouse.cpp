@@ -77,9 +77,10 @@ bool scene::grab_particle(const pick_ray& ray, double max_angle) {
       return false;
     const std::string stage = std::string(stage_name(stage_));
     if (particles.is_fixed[*picked]) {
-      std::printf("clothlab-window: %s\n", format(tr("p%zu of %s is fixed: it cannot be dragged"),
-                                                  *picked, stage_in_words(stage_))
-                                               .c_str());
+      std::printf(
+          tr("clothlab-window: %s\n"),
+          format(tr("p%zu of %s is fixed: it cannot be dragged"), *picked, stage_in_words(stage_))
+              .c_str());
       std::fflush(stdout);
       return false;
     }
@@ -102,7 +103,7 @@ bool scene::grab_particle(const pick_ray& ray, double max_angle) {
   const int kv = static_cast<int>(*picked / static_cast<std::size_t>(n));
   const glm::dvec3 position = cloth_stage.particles().get_position(*picked);
   if (cloth_stage.particles().is_fixed[*picked]) {
-    std::printf("clothlab-window: %s\n",
+    std::printf(tr("clothlab-window: %s\n"),
                 format(tr("particle (%d, %d) is pinned: it cannot be dragged"), ku, kv).c_str());
     std::fflush(stdout);
     return false;

@@ -108,16 +108,16 @@ int main(int argc, char** argv) {
   std::string error;
   const auto context = glfw_context::create("clothlab", initial_width, initial_height, error);
   if (!context) {
-    std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
+    std::fprintf(stderr, tr("clothlab-window: %s\n"), error.c_str());
     return 1;
   }
-  std::printf("clothlab-window: %s, %s\n", context->description().c_str(),
+  std::printf(tr("clothlab-window: %s, %s\n"), context->description().c_str(),
               context->origin().c_str());
   std::fflush(stdout);
 
   const auto app = window_app::create(*context, start, error);
   if (!app) {
-    std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
+    std::fprintf(stderr, tr("clothlab-window: %s\n"), error.c_str());
     return 1;
   }
   const scene& the_scene = app->the_scene();
