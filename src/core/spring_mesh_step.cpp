@@ -119,8 +119,7 @@ void spring_mesh::apply_constraints() {
   const double dt = parameters.dynamics.time_step;
   if (parameters.sphere.enabled)
     apply_sphere_contact(parameters.sphere, dt, particles_);
-  if (parameters.ground_enabled)  // question 9
-    apply_ground_contact(parameters.ground_height, parameters.ground_friction, dt, particles_);
+  apply_ground_contact(parameters, particles_);  // question 9
   if (parameters.self_collision_thickness > 0.0)
     self_collision_.apply(grid_size_, self_collision_distance(parameters), particles_);
   if (parameters.tear_strain > 0.0)

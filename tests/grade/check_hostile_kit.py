@@ -26,7 +26,7 @@ constructor) and again in the tests. The class, graded as root with bubblewrap:
                   output stays valid (junit.xml parses)
   eve-cmdline     reads every process's /proc/PID/cmdline and looks for another student's
                   solution (and the teacher's) under each path it names, and for the files
-                  that eve-poison left in /tmp and /dev/shm
+                  that eve-poison left in /tmp, /dev/shm and /run/lock
   dave            the solution (honest, last)
 Then a second grader run over the same --work: the honest student 80, the stubs 0, the kit's
 checkers and record unchanged. Then the same attacks with bubblewrap refused
@@ -177,9 +177,10 @@ class Class:
                   scratch / "copy/build-grade/tests/lab/lab_runner",
                   scratch / "copy/build-grade/tests/lab/poison",
                   scratch / "copy/shaders/gpu_step.frag", scratch.parent / "poison"]
-        # Left in the machine's shared places (the fallback's /tmp, /dev/shm), for the next
-        # student's code: eve-cmdline looks for them.
+        # Left in the machine's shared places (the fallback's /tmp, /dev/shm, /run/lock), for the
+        # next student's code: eve-cmdline looks for them.
         leftovers = [f"/tmp/{self.work.name}-leftover", f"/dev/shm/{self.work.name}-leftover"]
+        leftovers += [f"/run/lock/{self.work.name}-leftover"] if os.path.isdir("/run/lock") else []
         self.leftovers = leftovers
         eve = m.copy("eve-poison", cls, m.stubs)
         attack_at_start(m, eve, "#include <fcntl.h>\n#include <unistd.h>",
@@ -369,7 +370,7 @@ def main():
         check(not (c.outside / "fake-checker-ran").exists(), "the fake checker ran as root")
         check(snapshot(kept) == before, "the kit changed in the fallback")
         check(not any(Path(p).exists() for p in c.leftovers),
-              f"fallback: what a submission left in /tmp or /dev/shm is still there: "
+              f"fallback: what a submission left in a shared folder is still there: "
               f"{[p for p in c.leftovers if Path(p).exists()]}")
 
         # 4. Gradescope: the daemon through the bundle's run_autograder, in the fallback.
