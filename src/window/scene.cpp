@@ -17,16 +17,17 @@
 
 namespace clothlab {
 
+// The stage as the window's messages name it ("the cloth stage diverged at step ...").
 const char* stage_in_words(stage_kind stage) {
   switch (stage) {
     case stage_kind::spring:
-      return tr("the single spring");
+      return tr("the spring stage");
     case stage_kind::coupled:
-      return tr("the chain of coupled springs");
+      return tr("the coupled stage");
     case stage_kind::cloth:
       break;
   }
-  return tr("the cloth");
+  return tr("the cloth stage");
 }
 
 namespace {
