@@ -9,6 +9,7 @@
 #   ./run.sh --web-build-only       the same page, built but not served
 set -euo pipefail
 root=$(cd "$(dirname "$0")" && pwd)
+. "$root/scripts/messages.sh"  # say: the words in the user's language
 
 case "${1:-}" in
   --web)
@@ -19,7 +20,7 @@ case "${1:-}" in
   --web-build-only)
     shift
     if [ $# -gt 0 ]; then
-      echo "run.sh: --web-build-only takes no other option (got: $*)" >&2
+      say "run.sh: --web-build-only takes no other option (got: %s)" "$*" >&2
       exit 2
     fi
     exec "$root/scripts/setup-web.sh"
@@ -32,7 +33,7 @@ if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ] || [ "$(uname -s)" = D
   exec "$root/build/clothlab" "$@"
 fi
 
-echo "clothlab: no display (DISPLAY is not set): rendering each stage off-screen instead."
+say "clothlab: no display (DISPLAY is not set): rendering each stage off-screen instead."
 mkdir -p "$root/out"
 # The cloth's final state on each path (its last step only), to say what the pictures show.
 states=$(mktemp -d)
@@ -49,30 +50,36 @@ for entry in "${tour[@]}"; do
   read -r -a args <<<"${entry#*:}"
   "$root/build/clothlab" --headless "${args[@]}" "$@" --png "$root/out/$name.png"
   shown=${entry#*:}
-  echo "  wrote out/$name.png  (clothlab --headless ${shown%% --csv *} --png out/$name.png)"
+  say "  wrote out/%s.png  (clothlab --headless %s --png out/%s.png)" "$name" "${shown%% --csv *}" \
+    "$name"
 done
 
 # What the chain's picture shows, from its last step: the last mass hangs below the one above
-# it, or fell away from it (farther than four rest lengths, 2 m: its spring does not hold it).
+# it ("hangs"), or fell away from it ("fell DISTANCE": farther than four rest lengths, 2 m, its
+# spring does not hold it).
 chain_state() {  # CSV
   awk -F, 'NR > 1 { if ($1 != step) { n = 0; step = $1 } n++; x[n] = $4; y[n] = $5; z[n] = $6 }
     END {
       if (n < 3) { print "unknown"; exit }
       d = sqrt((x[n] - x[n-1])^2 + (y[n] - y[n-1])^2 + (z[n] - z[n-1])^2)
-      if (d > 2) printf "its last mass fell away, %.3g m below the one above it\n", z[n-1] - z[n]
-      else print "the chain hangs and sways"
+      if (d > 2) printf "fell %.3g\n", z[n-1] - z[n]
+      else print "hangs"
     }' "$1" 2>/dev/null || echo unknown
 }
 if [ -f "$states/chain.csv" ]; then
-  chain=$(chain_state "$states/chain.csv")
-  echo "clothlab: what the chain picture shows (out/coupled.png): $chain."
+  read -r chain distance <<<"$(chain_state "$states/chain.csv")"
   case "$chain" in
-    its\ last*) echo "          Its lower spring pulls no mass: question 5 (coupled_springs::compute_force)." ;;
+    fell)
+      say "clothlab: what the chain picture shows (out/coupled.png): its last mass fell away, %s m below the one above it." "$distance"
+      say "          Its lower spring pulls no mass: question 5 (coupled_springs::compute_force)." ;;
+    hangs) say "clothlab: what the chain picture shows (out/coupled.png): the chain hangs and sways." ;;
+    *) say "clothlab: what the chain picture shows (out/coupled.png) is unknown." ;;
   esac
 fi
 
 # What the cloth of a picture does, from its last step: hangs, lies on the floor, or went
-# through it (the floor at z = -1; the questions that hold the cloth up are 6 to 9).
+# through it (the floor at z = -1; the questions that hold the cloth up are 6 to 9): "fell HIGHEST",
+# "part BELOW COUNT", "lies", "hangs" or "unknown".
 cloth_state() {  # CSV
   awk -F, 'NR > 1 { step[NR] = $1; z[NR] = $6; last = $1 }
     END {
@@ -82,30 +89,44 @@ cloth_state() {  # CSV
         if (z[i] < low) low = z[i]; if (z[i] > high) high = z[i]
       }
       if (n == 0) print "unknown"
-      else if (below == n) printf "fell through the floor, out of the picture (its highest point at z = %.3g m)\n", high
-      else if (below > 0) printf "hangs in part: %d of its %d particles went through the floor\n", below, n
-      else if (high < -0.9) print "lies on the floor: nothing holds it up"
-      else print "hangs above the floor"
+      else if (below == n) printf "fell %.3g\n", high
+      else if (below > 0) printf "part %d %d\n", below, n
+      else if (high < -0.9) print "lies"
+      else print "hangs"
     }' "$1" 2>/dev/null || echo unknown
 }
-if [ -f "$states/cpu.csv" ]; then
-  cpu=$(cloth_state "$states/cpu.csv")
-  gpu=$( [ -f "$states/gpu.csv" ] && cloth_state "$states/gpu.csv" || echo unknown)
-  echo "clothlab: what the cloth pictures show: on the CPU (out/cloth.png) the cloth $cpu;"
-  echo "          on the GPU (out/cloth-gpu.png) it $gpu."
-  case "$cpu" in
-    fell*) echo "          The cloth's questions are still to do: 6 (apply_force), 7 (the pins), 8" \
-                "(the springs) and 9 (the ground); ./test.sh shows which (README: Your tasks)." ;;
-    "hangs in part"*) echo "          Part of it falls: questions 8 (the springs) and 9 (the ground)." ;;
-    lies*) echo "          Nothing holds it: question 7 (the two pinned corners)." ;;
+# The state in words: what the cloth does (a predicate: "the cloth fell through the floor ...").
+cloth_words() {  # STATE [NUMBERS]
+  case "$1" in
+    fell) say "fell through the floor, out of the picture (its highest point at z = %s m)" "$2" ;;
+    part) say "hangs in part: %s of its %s particles went through the floor" "$2" "$3" ;;
+    lies) say "lies on the floor: nothing holds it up" ;;
+    hangs) say "hangs above the floor" ;;
+    *) say "is in a state that cannot be read" ;;
   esac
-  case "$gpu" in
-    fell* | "hangs in part"*)
-      case "$cpu" in
-        hangs\ above*) echo "          On the GPU: questions 12 (the springs) and 9 (the ground, in" \
-                             "shaders/gpu_cloth_common.glsl)." ;;
-      esac ;;
+}
+if [ -f "$states/cpu.csv" ]; then
+  read -r -a cpu <<<"$(cloth_state "$states/cpu.csv")"
+  gpu=(unknown)
+  if [ -f "$states/gpu.csv" ]; then
+    read -r -a gpu <<<"$(cloth_state "$states/gpu.csv")"
+  fi
+  say "clothlab: what the cloth pictures show: on the CPU (out/cloth.png) the cloth %s;" \
+    "$(cloth_words "${cpu[@]}")"
+  say "          on the GPU (out/cloth-gpu.png) it %s." "$(cloth_words "${gpu[@]}")"
+  case "${cpu[0]}" in
+    fell)
+      say "          The cloth's questions are still to do: 6 (apply_force), 7 (the pins), 8"
+      say "          (the springs) and 9 (the ground); ./test.sh shows which (README: Your tasks)." ;;
+    part) say "          Part of it falls: questions 8 (the springs) and 9 (the ground)." ;;
+    lies) say "          Nothing holds it: question 7 (the two pinned corners)." ;;
+  esac
+  case "${gpu[0]}" in
+    fell | part)
+      if [ "${cpu[0]}" = hangs ]; then
+        say "          On the GPU: questions 12 (the springs) and 9 (the ground, in shaders/gpu_cloth_common.glsl)."
+      fi ;;
   esac
 fi
-echo "          The pictures are still: for the window (the lab's panel, live), run ./run.sh from a"
-echo "          desktop session, or on this machine: xvfb-run -a ./run.sh"
+say "          The pictures are still: for the window (the lab's panel, live), run ./run.sh from a"
+say "          desktop session, or on this machine: xvfb-run -a ./run.sh"

@@ -18,6 +18,7 @@
 #                                         say otherwise, e.g. ./test.sh --sanitize -L cli
 set -euo pipefail
 root=$(cd "$(dirname "$0")" && pwd)
+. "$root/scripts/messages.sh"  # say: the words in the user's language
 
 # The sanitizer build: ASan + UBSan, every finding fatal (CLOTHLAB_SANITIZE in CMakeLists.txt).
 sanitize() {
@@ -63,7 +64,7 @@ start_web_build() {
 wait_web_build() {  # the browser build's end; 1 (and the end of its log) if it failed
   [ -n "$web_build" ] || return 0
   wait "$web_build" && return 0
-  echo "clothlab: the browser build failed; the end of build-web/build.log:" >&2
+  say "clothlab: the browser build failed; the end of build-web/build.log:" >&2
   tail -n 30 "$root/build-web/build.log" >&2
   return 1
 }
@@ -84,7 +85,7 @@ if [ "${1:-}" = "--long" ]; then
   start_web_build
   long_options=(-L '^long$')
   if [ -z "$web_build" ]; then
-    echo "clothlab: no browser build on this platform: the tests labelled web are skipped (docs/platforms.md)"
+    say "clothlab: no browser build on this platform: the tests labelled web are skipped (docs/platforms.md)"
     long_options+=(-LE '^web$')
   fi
   status=0
@@ -152,13 +153,14 @@ if [ $# -gt 0 ]; then
   run_tests "${results[0]}" "$@" || status=$?
 else
   if [ ${#left_out[@]} -gt 0 ]; then
-    echo "clothlab: on $platform, the tests labelled ${left_out[*]} are skipped (docs/platforms.md)"
+    say "clothlab: on %s, the tests labelled %s are skipped (docs/platforms.md)" "$platform" \
+      "${left_out[*]}"
   fi
   # BEGIN TEACHER
   left_out+=(long)  # ./test.sh --long
   # END TEACHER
-  # COPY| echo "clothlab: the tests of the lab's questions (lab.q5.* ... lab.q13.*) fail until you" \
-  # COPY|   "answer them; the table at the end says which is next (docs/lab.md)."
+  # COPY| say "clothlab: the tests of the lab's questions (lab.q5.* ... lab.q13.*) fail until you"
+  # COPY| say "answer them; the table at the end says which is next (docs/lab.md)."
   # A plain run: every test but the left-out labels, then, once all of them pass, the tests of
   # the finished lab (labels *-solution: the pictures of the hanging cloth, the GPU against the
   # CPU, ...), which fail as long as a question is left: before that they would only repeat the
@@ -181,8 +183,8 @@ else
     fi
     run_tests "${results[1]}" "${solution_options[@]}" || status=$?
   else
-    echo "clothlab: the tests of the finished lab (labels ending in -solution: the pictures of the" \
-      "hanging cloth, the GPU against the CPU) run once every test above passes."
+    say "clothlab: the tests of the finished lab (labels ending in -solution: the pictures of the"
+    say "hanging cloth, the GPU against the CPU) run once every test above passes."
   fi
 fi
 # BEGIN TEACHER

@@ -19,7 +19,10 @@ echo $$ >"$web/build.pid"
 trap 'echo $? >"$web/build.status.new" && mv "$web/build.status.new" "$web/build.status"' EXIT
 
 # (xz-utils: tar unpacks Dear ImGui's sources, a .tar.xz, with it; a minimal Debian lacks it.)
-packages=(emscripten cmake make python3 xz-utils libimgui-dev libglm-dev libstb-dev)
+# (gettext compiles the message catalogues, fonts-dejavu-core is the panel's font: both packed
+# into the page.)
+packages=(emscripten cmake make python3 xz-utils libimgui-dev libglm-dev libstb-dev gettext
+          fonts-dejavu-core)
 if [ "${1:-}" = "--with-browser" ]; then
   packages+=(chromium chromium-driver)
 fi

@@ -19,10 +19,12 @@ done
 
 # Named as Debian names them; scripts/packages.txt gives each one's name on Ubuntu and Homebrew.
 # git, python3 (and PyYAML, for the workflow's test), ImageMagick, xdotool, Xvfb and bubblewrap: the scripts and tests call them.
+# gettext compiles the message catalogues (po/, docs/translating.md); fonts-dejavu-core is the
+# panel's font, which has the accents of French.
 packages=(
   build-essential ccache cmake make ninja-build pkg-config clang-format python3 python3-yaml git
   xz-utils
-  glslang-tools
+  glslang-tools gettext fonts-dejavu-core
   libglfw3-dev libglew-dev libglm-dev libimgui-dev libstb-dev libosmesa6-dev libegl-dev
   libopengl-dev libegl-mesa0
   libcli11-dev libgtest-dev libbenchmark-dev

@@ -16,10 +16,12 @@ outside a region is a comment in the teacher's copy and `code` in the student's.
 make-student-version is the command; scripts/grade and scripts/mutate-grader read the regions
 through this module.
 """
+import gettext
 import hashlib
 import os
 import re
 import subprocess
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -39,6 +41,11 @@ COPY_MARKDOWN = re.compile(r"^(\s*)<!-- COPY\|(?: (.*?))? -->$")
 TEACHER_BEGIN = re.compile(r"^\s*(<!--|//|#)\s*BEGIN TEACHER\b")
 TEACHER_END = re.compile(r"^\s*(<!--|//|#)\s*END TEACHER\b")
 TASKS_LINE = "<!-- YOUR TASKS -->"
+# A hint's comment line: its indentation, its comment leader, its words.
+HINT_COMMENT = re.compile(r"^(\s*)(//|#) ?(.*)$")
+# The catalogues' context of the TODOs and the regions' titles (po/<lang>.po): the student copy
+# in another language is written from them, and leaves them out of its own catalogues.
+HINT_CONTEXT = "TODO"
 
 
 class RegionError(Exception):
@@ -71,10 +78,68 @@ def enclosing_function(lines, index):
     return "?"
 
 
-def transform(name, text, keep, regions, hints="handout", questions=None):
+def hint_text(lines):
+    """A run of hint lines (comments) as the catalogues hold it: their words, a line each, the
+    indentation and the comment leader left out; None when a line is not a comment."""
+    matches = [HINT_COMMENT.match(line) for line in lines]
+    if not lines or not all(matches):
+        return None
+    return "\n".join(m.group(3).rstrip() for m in matches)
+
+
+def hint_lines(first_line, text):
+    """The lines of a hint's words `text`, indented and led as `first_line` is."""
+    indent, leader = HINT_COMMENT.match(first_line).group(1, 2)
+    return [f"{indent}{leader} {words}".rstrip() for words in text.split("\n")]
+
+
+def hint_runs(lines):
+    """The runs of a region's STUDENT(LEVEL)| lines, each a list of its lines without the prefix:
+    what one entry of the catalogues translates."""
+    runs, current, level_of_run = [], [], None
+    for line in lines + [""]:
+        student = STUDENT.match(line)
+        level = student.group(2) if student else None
+        if current and level != level_of_run:
+            runs.append(current)
+            current = []
+        if level is not None:
+            current.append(student.group(1) + (student.group(3) or ""))
+            level_of_run = level
+    return runs
+
+
+def hint_messages(root, folders=SEARCHED_FOR_LEFTOVERS):
+    """(file, text) of every TODO and every region's title of root's src/ and shaders/: the
+    texts a student copy in another language takes from the catalogues."""
+    found = []
+    for folder in folders:
+        for path in sorted((root / folder).rglob("*")):
+            if not path.is_file() or path.suffix not in TEXT_SUFFIXES:
+                continue
+            name = path.relative_to(root).as_posix()
+            lines = path.read_text(encoding="utf-8").split("\n")
+            region = []
+            for line in lines:
+                begin = BEGIN.match(line)
+                if begin:
+                    region = [line]
+                    if begin.group(3):
+                        found.append((name, begin.group(3).strip()))
+                elif region:
+                    region.append(line)
+                    if END.match(line):
+                        found += [(name, hint_text(run)) for run in hint_runs(region)
+                                  if hint_text(run) is not None]
+                        region = []
+    return found
+
+
+def transform(name, text, keep, regions, hints="handout", questions=None, translate=None):
     """The student version of one text file at the given hint level; appends (question, title,
     file, function, solution lines, stub lines) for every region to `regions`. The stub lines
-    are those of the chosen level (and the common STUDENT| lines)."""
+    are those of the chosen level (and the common STUDENT| lines). `translate`, when given,
+    takes a hint's words or a region's title (hint_text) and gives them in the copy's language."""
     lines = text.split("\n")
     out = []
     i = 0
@@ -114,8 +179,11 @@ def transform(name, text, keep, regions, hints="handout", questions=None):
         if questions is not None and question not in questions:
             raise RegionError(f"{name}:{i + 1}: {question} is not a question that asks for code "
                               f"({', '.join(questions)})")
+        if translate is not None and title:
+            title = translate(title, f"{name}:{i + 1}")
         start = i
         stub, solution = [], []
+        run = []  # the current run of the chosen level's hint lines
         levels_seen = set()
         i += 1
         while True:
@@ -137,8 +205,19 @@ def transform(name, text, keep, regions, hints="handout", questions=None):
                     raise RegionError(f"{name}:{i + 1}: STUDENT({level})|: the hint levels are "
                                       f"{', '.join(HINT_LEVELS)}")
                 levels_seen.add(level)
-                if level is None or level == hints:
-                    stub.append(student.group(1) + (student.group(3) or ""))
+                line_of_stub = student.group(1) + (student.group(3) or "")
+                if level is not None and level == hints and translate is not None:
+                    run.append(line_of_stub)
+                    following = STUDENT.match(lines[i + 1]) if i + 1 < len(lines) else None
+                    if not following or following.group(2) != level:
+                        words = hint_text(run)
+                        if words is None:
+                            raise RegionError(f"{name}:{i + 1}: a hint line that is not a "
+                                              "comment: it cannot be translated")
+                        stub += hint_lines(run[0], translate(words, f"{name}:{i + 1}"))
+                        run = []
+                elif level is None or level == hints:
+                    stub.append(line_of_stub)
             elif COPY.match(inner):
                 raise RegionError(f"{name}:{i + 1}: a COPY| line inside a solution region")
             else:
@@ -196,12 +275,16 @@ def todo_texts(regions, question):
     return "\n".join(line for r in regions if r[0] == question for line in r[5])
 
 
-def tasks_section(regions, questions):
+def tasks_section(regions, questions, translations=gettext.NullTranslations()):
+    """README's section of the tasks, in the language of `translations` (the catalogue's texts
+    of context "TODO", like the TODOs: the copy's catalogues leave them out)."""
+    pgettext = translations.pgettext
+
     order = {q: n for n, q in enumerate(questions)}
     rows = []
     seen = set()
     # Question by question, the C++ before the shaders.
-    for question, title, name, function, _, _ in sorted(
+    for question, title, name, function, _solution, _stub in sorted(
             regions, key=lambda r: (order[r[0]], r[2].startswith("shaders/"))):
         key = (question, title, name)
         if key in seen:
@@ -210,15 +293,19 @@ def tasks_section(regions, questions):
         rows.append(f"| {question} | {title} | `{name}` | `{function}` | `./test.sh -L "
                     f"{question.lower()}` |")
     return "\n".join([
-        "## Your tasks",
+        "## " + pgettext("TODO", "Your tasks"),
         "",
-        "The code of these questions is yours to write. Each place holds a `TODO Qn` comment that",
-        "states the task and what is at hand, above a stub that compiles and runs (so the program",
-        "works from the start: the cloth falls under gravity alone until questions 6 and 8 are",
-        "done). `./test.sh -L q8` checks one answer; `./test.sh` checks everything and ends with a",
-        "table of the questions, done or to do. `docs/lab.md` walks through the lab.",
+        # TRANSLATORS: Markdown, wrapped at 100 columns; `TODO Qn` and the commands stay as they
+        # are.
+        pgettext("TODO", "The code of these questions is yours to write. Each place holds a "
+                 "`TODO Qn` comment that\nstates the task and what is at hand, above a stub that "
+                 "compiles and runs (so the program\nworks from the start: the cloth falls under "
+                 "gravity alone until questions 6 and 8 are\ndone). `./test.sh -L q8` checks one "
+                 "answer; `./test.sh` checks everything and ends with a\ntable of the questions, "
+                 "done or to do. `docs/lab.md` walks through the lab."),
         "",
-        "| question | what | file | function | check |",
+        # TRANSLATORS: the header of the table of the tasks, Markdown: keep the five columns.
+        pgettext("TODO", "| question | what | file | function | check |"),
         "|---|---|---|---|---|",
         *rows,
     ])
@@ -260,22 +347,70 @@ class Answers:
     allowed: dict = field(default_factory=dict)  # (question, file): why it may hold one
 
 
-def generate(root, dest, lab, keep=(), hints="handout", answers=Answers()):
-    """Writes the student copy of root into dest; returns what it wrote, in words. RegionError
-    names the file and line of a malformed region, a leftover solution line or an answer."""
+def catalogue(root, language):
+    """The translations of po/<language>.po (Python's gettext over the catalogue msgfmt
+    compiles), or None for English, the sources' own language. RegionError when there is no such
+    catalogue or msgfmt is missing."""
+    if language == "en":
+        return None
+    po = root / "po" / f"{language}.po"
+    if not po.is_file():
+        known = sorted(p.stem for p in (root / "po").glob("*.po"))
+        raise RegionError(f"--lang {language}: no catalogue po/{language}.po (the languages: "
+                          f"{', '.join(['en'] + known)})")
+    with tempfile.TemporaryDirectory() as folder:
+        mo = Path(folder) / "clothlab.mo"
+        try:
+            subprocess.run(["msgfmt", "--check", "-o", str(mo), str(po)], check=True,
+                           capture_output=True, text=True)
+        except OSError:
+            raise RegionError("msgfmt is missing: install GNU gettext (Debian's package gettext)")
+        except subprocess.CalledProcessError as error:
+            raise RegionError(f"po/{language}.po does not compile:\n{error.stderr.strip()}")
+        with mo.open("rb") as file:
+            return gettext.GNUTranslations(file)
+
+
+def without_hints(text):
+    """A catalogue (.po, .pot) without its entries of HINT_CONTEXT: the copy's TODOs are written
+    already, and those of the other hint level are not the student's to read."""
+    blocks = text.rstrip("\n").split("\n\n")
+    kept = [b for b in blocks if f'msgctxt "{HINT_CONTEXT}"' not in b]
+    return "\n\n".join(kept) + "\n"
+
+
+def generate(root, dest, lab, keep=(), hints="handout", answers=Answers(), language="en"):
+    """Writes the student copy of root into dest, its TODOs and README's tasks in `language`
+    (po/<language>.po); returns what it wrote, in words. RegionError names the file and line of
+    a malformed region, a leftover solution line, an answer or a text the catalogue lacks."""
     questions = lab.ids
     regions = []
     outputs = {}
+    translations = catalogue(root, language)
+    untranslated = []
+    translate = None
+    if translations is not None:
+        def translate(words, where):
+            found = translations.pgettext(HINT_CONTEXT, words)
+            if found == words:
+                untranslated.append(f"{where}: {words.splitlines()[0]}")
+            return found
     for name in project_files(root):
         if lab.is_teacher_file(name):
             continue
         source = root / name
         data = source.read_bytes()
         if Path(name).suffix in TEXT_SUFFIXES and b"\0" not in data:
-            text = transform(name, data.decode("utf-8"), keep, regions, hints, questions)
+            text = transform(name, data.decode("utf-8"), keep, regions, hints, questions,
+                             translate)
             data = text.encode("utf-8")
+        elif name.startswith("po/") and name.endswith((".po", ".pot")):
+            data = without_hints(data.decode("utf-8")).encode("utf-8")
         outputs[name] = (data, source.stat().st_mode & 0o777)
 
+    if untranslated:
+        raise RegionError(f"po/{language}.po has no translation of these TODOs (scripts/"
+                          "update-messages, then translate them):\n  " + "\n  ".join(untranslated))
     questions_found = {r[0] for r in regions}
     missing = [q for q in questions if q not in questions_found]
     if missing:
@@ -284,7 +419,8 @@ def generate(root, dest, lab, keep=(), hints="handout", answers=Answers()):
         readme = outputs["README.md"][0].decode("utf-8")
         if TASKS_LINE not in readme:
             raise RegionError(f"README.md has no line {TASKS_LINE}")
-        readme = readme.replace(TASKS_LINE, tasks_section(regions, questions))
+        readme = readme.replace(TASKS_LINE, tasks_section(
+            regions, questions, translations or gettext.NullTranslations()))
         outputs["README.md"] = (readme.encode("utf-8"), outputs["README.md"][1])
 
     # No line of a removed solution may survive anywhere in the student's code.
@@ -348,9 +484,11 @@ def generate(root, dest, lab, keep=(), hints="handout", answers=Answers()):
         version.update(name.encode() + b"\0" + outputs[name][0] + b"\0")
     (dest / MARKER_FILE).write_text(
         "A student copy of clothlab, written by scripts/make-student-version"
-        + f" (hints: {hints}" + (f"; kept: {', '.join(sorted(keep))}" if keep else "")
+        + f" (hints: {hints}" + (f"; language: {language}" if language != "en" else "")
+        + (f"; kept: {', '.join(sorted(keep))}" if keep else "")
         + ").\n" + f"version: {version.hexdigest()[:16]}\n")
     kept = f", solutions kept: {', '.join(sorted(keep))}" if keep else ""
     return (f"student copy written to {dest}: {len(outputs)} files, {len(regions)} regions in "
-            f"{len(questions_found)} questions replaced by their TODO stubs (hints: {hints})"
+            f"{len(questions_found)} questions replaced by their TODO stubs (hints: {hints}"
+            f"{'' if language == 'en' else ', language: ' + language})"
             f"{kept}")

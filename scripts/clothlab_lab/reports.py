@@ -11,6 +11,8 @@ import urllib.parse
 import xml.etree.ElementTree as ElementTree
 from collections import Counter
 
+from .messages import _, pgettext
+
 
 # ------------------------------------------------------------------------------------------
 # The table of the questions after ./test.sh: from ctest's labels and its JUnit results.
@@ -46,48 +48,56 @@ def results(path):
 
 def print_lab_table(lab, labels, outcome):
     """Prints, for each question of the lab, how many of its tests passed and whether it is
-    done; then the tests that need the whole solution, and the others."""
+    done; then the tests that need the whole solution, and the others. In the user's language
+    (messages.start)."""
     questions = [(q.label, q.title, ", ".join(q.functions)) for q in lab.questions]
+    done, part, to_do, not_run = _("done"), _("passed (part run)"), _("TO DO"), _("not run")
     rows = []
     for label, what, where in questions:
         tests = [name for name, names in labels.items() if label in names]
         ran = [name for name in tests if outcome.get(name, "not run") != "not run"]
         passed = [name for name in ran if outcome[name] == "passed"]
         if not ran:
-            status = "not run"
+            status = not_run
         elif len(passed) == len(tests):
-            status = "done"
+            status = done
         elif len(passed) == len(ran):
-            status = "passed (part run)"
+            status = part
         else:
-            status = "TO DO"
-        rows.append((label.upper(), what, where, f"{len(passed)}/{len(tests)}", status))
+            status = to_do
+        rows.append((label.upper(), pgettext("question", what), where,
+                     f"{len(passed)}/{len(tests)}", status))
     # The tests that need the whole solution (labels render-solution, gpu-solution, ...).
     whole = [name for name, names in labels.items() if any(n.endswith("-solution") for n in names)]
     whole_ran = [name for name in whole if outcome.get(name, "not run") != "not run"]
     whole_passed = [name for name in whole_ran if outcome[name] == "passed"]
     if whole:
-        status = ("not run" if not whole_ran else "done" if len(whole_passed) == len(whole)
-                  else "passed (part run)" if len(whole_passed) == len(whole_ran) else "TO DO")
-        rows.append(("all", "the whole cloth: pictures, GPU = CPU, model",
-                     "every question above", f"{len(whole_passed)}/{len(whole)}", status))
+        status = (not_run if not whole_ran else done if len(whole_passed) == len(whole)
+                  else part if len(whole_passed) == len(whole_ran) else to_do)
+        rows.append((_("all"), _("the whole cloth: pictures, GPU = CPU, model"),
+                     _("every question above"), f"{len(whole_passed)}/{len(whole)}", status))
     others = [name for name, names in labels.items()
-              if not any(q in names for q, _, _ in questions) and name not in whole
+              if not any(q in names for q, _what, _where in questions) and name not in whole
               and name in outcome and outcome[name] != "not run"]
     other_failed = [name for name in others if outcome[name] == "failed"]
 
-    widths = [max(len(row[i]) for row in rows + [("Q", "question", "where", "tests", "status")])
-              for i in range(5)]
+    # TRANSLATORS: the columns of the table of the questions (./test.sh): the question's number,
+    # what it asks, where it is answered, how many of its tests pass, its status.
+    header = (_("Q"), _("question"), _("where"), _("tests"), _("status"))
+    widths = [max(len(row[i]) for row in rows + [header]) for i in range(5)]
     line = "  ".join("{:<%d}" % w for w in widths)
     print()
-    print("The lab, question by question (./test.sh -L q8 checks one):")
-    print(line.format("Q", "question", "where", "tests", "status").rstrip())
+    print(_("The lab, question by question (./test.sh -L q8 checks one):"))
+    print(line.format(*header).rstrip())
     for row in rows:
         print(line.format(*row).rstrip())
     if others:
-        print(f"Other tests: {len(others) - len(other_failed)} of {len(others)} passed" +
-              (f"; failed: {', '.join(sorted(other_failed)[:5])}"
-               + (" ..." if len(other_failed) > 5 else "") if other_failed else ""))
+        failed = ""
+        if other_failed:
+            failed = _("; failed: %s") % (", ".join(sorted(other_failed)[:5])
+                                          + (" ..." if len(other_failed) > 5 else ""))
+        print(_("Other tests: %(passed)d of %(count)d passed") % {
+            "passed": len(others) - len(other_failed), "count": len(others)} + failed)
 
 
 # ------------------------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/i18n.hpp"
 #include "gl/shader.hpp"  // shader_path, asset_path
 
 namespace clothlab {
@@ -39,12 +40,14 @@ bool data_files_present(const options& o, std::string& error) {
   for (const auto& [option, file] : needed) {
     if (std::ifstream(file).good())
       continue;
-    error = option + ": cannot read " + file + ": " + std::strerror(errno) +
-            " (the data folder: CLOTHLAB_DATA_DIR, or the one found beside the program)";
+    error = option + colon() +
+            format(tr("cannot read %s: %s (the data folder: CLOTHLAB_DATA_DIR, or the one found "
+                      "beside the program)"),
+                   file.c_str(), std::strerror(errno));
     // The student copy has no compute path: its step shader would answer questions 6, 9, 12 and
     // 13 (docs/teaching.md).
     if (file.ends_with("gpu_compute_step.comp"))
-      error += "; a student copy of the lab has no compute path: it is in the teacher's copy";
+      error += tr("; a student copy of the lab has no compute path: it is in the teacher's copy");
     return false;
   }
   return true;

@@ -13,6 +13,7 @@
 #include "app/stop_watchdog.hpp"
 #include "app/sweep_command.hpp"
 #include "core/cpu_cloth_paths.hpp"
+#include "core/i18n.hpp"
 #include "gl/cloth_paths.hpp"
 #include "gl/gl_context.hpp"
 
@@ -27,7 +28,7 @@ int step_cloth(const options& o, cpu_cloth_paths& paths, run_outputs& out) {
   std::string error;
   if (!paths.load(o.backend, error)) {
     if (o.backend == cloth_backend::gpu_compute)
-      report("--backend gpu-compute: %s", error.c_str());
+      report(tr("--backend gpu-compute: %s"), error.c_str());
     else
       report("%s", error.c_str());
     return exit_failure;
@@ -113,13 +114,13 @@ int run_headless(const options& o) {
   if (needs_opengl(o)) {
     context = create_offscreen_context(o.width, o.height, error);
     if (!context) {
-      report("no OpenGL context: %s", error.c_str());
+      report(tr("no OpenGL context: %s"), error.c_str());
       std::lock_guard lock(stopping.outputs);
       stopping.taken = true;
       out.close(false, false, error);
       return exit_failure;
     }
-    std::printf("clothlab: OpenGL: %s, %s\n", context->description().c_str(),
+    std::printf(tr("clothlab: OpenGL: %s, %s\n"), context->description().c_str(),
                 context->origin().c_str());
   }
 
@@ -130,10 +131,9 @@ int run_headless(const options& o) {
   std::lock_guard lock(stopping.outputs);
   stopping.taken = true;
   if (status == 0 && stop_signal != 0) {
-    report(
-        "interrupted by %s after the last step; the CSV files hold every step, the OBJ and "
-        "the PNG are not written",
-        signal_name(stop_signal));
+    report(tr("interrupted by %s after the last step; the CSV files hold every step, the OBJ and "
+              "the PNG are not written"),
+           signal_name(stop_signal));
     status = 128 + stop_signal;
   }
   // The CSVs are kept when the run got somewhere: done, diverged (every step before it),

@@ -16,6 +16,7 @@
 #include "app/command_line.hpp"
 #include "app/headless.hpp"
 #include "app/run_control.hpp"
+#include "core/i18n.hpp"
 #include "gl/gl_context.hpp"
 #include "gl/program_choice.hpp"
 
@@ -73,17 +74,18 @@ int hand_over(const char* name, int argc, char** argv, const char* extra = nullp
   using clothlab::gl_choice;
 #if defined(CLOTHLAB_GL_OSMESA)
   const bool missing = choice == gl_choice::egl;
-  const char* has = "only OSMesa (CMake found no EGL, or CLOTHLAB_WITH_EGL=OFF)";
+  const char* has = clothlab::tr("only OSMesa (CMake found no EGL, or CLOTHLAB_WITH_EGL=OFF)");
 #elif defined(CLOTHLAB_GL_EGL)
   const bool missing = choice == gl_choice::osmesa;
-  const char* has = "only EGL (CMake found no OSMesa, or CLOTHLAB_WITH_OSMESA=OFF)";
+  const char* has = clothlab::tr("only EGL (CMake found no OSMesa, or CLOTHLAB_WITH_OSMESA=OFF)");
 #else
   const bool missing = choice != gl_choice::automatic;
-  const char* has = "neither OSMesa nor EGL: its off-screen runs use a hidden GLFW window";
+  const char* has =
+      clothlab::tr("neither OSMesa nor EGL: its off-screen runs use a hidden GLFW window");
 #endif
   if (!missing)
     return 0;
-  std::fprintf(stderr, "clothlab: --gl %s: this build has %s; use --gl auto\n",
+  std::fprintf(stderr, clothlab::tr("clothlab: --gl %s: this build has %s; use --gl auto\n"),
                choice == gl_choice::egl ? "egl" : "osmesa", has);
   return 1;
 }
@@ -91,6 +93,7 @@ int hand_over(const char* name, int argc, char** argv, const char* extra = nullp
 }  // namespace
 
 int main(int argc, char** argv) {
+  clothlab::start_messages();  // the user's language, before the first word (--lang may change it)
   const clothlab::parse_result result = clothlab::parse_command_line(argc, argv);
   if (!result.parsed)
     return result.exit_code;
@@ -120,7 +123,7 @@ int main(int argc, char** argv) {
   } catch (const std::exception& error) {
     clothlab::report("%s", clothlab::one_line(error.what()).c_str());
   } catch (...) {
-    clothlab::report("stopped by an exception that is not a std::exception");
+    clothlab::report("%s", clothlab::tr("stopped by an exception that is not a std::exception"));
   }
   return clothlab::exit_failure;
 }

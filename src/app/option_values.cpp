@@ -8,6 +8,8 @@
 #include <limits>
 #include <sstream>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 namespace {
 
@@ -23,17 +25,18 @@ std::string format_number(double x) {
 
 void require(bool ok, const std::string& option, double value, const std::string& what) {
   if (!ok)
-    throw usage_error{option + " " + format_number(value) + ": " + what};
+    throw usage_error{option + " " + format_number(value) + colon() + what};
 }
 
 void require_finite(const std::string& option, double value) {
-  require(std::isfinite(value), option, value, "must be a finite number");
+  require(std::isfinite(value), option, value, tr("must be a finite number"));
 }
 
 // low <= value <= high, named with the bounds: "--dt 1e-320: must be between 1e-09 and 1 s".
 void require_within(const std::string& option, double value, const bounds& b) {
   require_finite(option, value);
-  std::string what = "must be between " + format_number(b.low) + " and " + format_number(b.high);
+  std::string what = format(tr("must be between %s and %s"), format_number(b.low).c_str(),
+                            format_number(b.high).c_str());
   if (!b.unit.empty()) {
     what += ' ';
     what += b.unit;
@@ -61,7 +64,7 @@ double number_or_usage_error(const std::string& option, const std::string& text,
                              const std::string& expected) {
   const std::optional<double> x = parse_number(text);
   if (!x)
-    throw usage_error{option + " " + text + ": " + expected};
+    throw usage_error{option + " " + text + colon() + expected};
   return *x;
 }
 
@@ -73,12 +76,12 @@ glm::dvec3 parse_vector(const std::string& option, const std::string& text) {
   while (std::getline(in, item, ',')) {
     const std::optional<double> x = parse_number(item);
     if (!x || !std::isfinite(*x)) {
-      throw usage_error{option + " " + text + ": expected three finite numbers X,Y,Z"};
+      throw usage_error{option + " " + text + colon() + tr("expected three finite numbers X,Y,Z")};
     }
     values.push_back(*x);
   }
   if (values.size() != 3 || (!text.empty() && text.back() == ',')) {
-    throw usage_error{option + " " + text + ": expected three numbers X,Y,Z"};
+    throw usage_error{option + " " + text + colon() + tr("expected three numbers X,Y,Z")};
   }
   return {values[0], values[1], values[2]};
 }
@@ -91,7 +94,8 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
   auto number = [&](const std::string& item) {
     const std::optional<double> x = parse_number(item);
     if (!x || !std::isfinite(*x)) {
-      throw usage_error{option + " " + text + ": '" + item + "' is not a finite number"};
+      throw usage_error{option + " " + text + colon() +
+                        format(tr("'%s' is not a finite number"), item.c_str())};
     }
     return *x;
   };
@@ -101,20 +105,21 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
   for (std::string item; std::getline(in, item, separator);)
     items.push_back(item);
   if (items.empty() || text.back() == separator) {
-    throw usage_error{option + " " + text + ": expected A,B,C or FROM:TO:COUNT"};
+    throw usage_error{option + " " + text + colon() + tr("expected A,B,C or FROM:TO:COUNT")};
   }
   std::vector<double> values;
   if (separator == ':') {
     if (items.size() != 3)
-      throw usage_error{option + " " + text + ": expected FROM:TO:COUNT"};
+      throw usage_error{option + " " + text + colon() + tr("expected FROM:TO:COUNT")};
     const double from = number(items[0]);
     const double to = number(items[1]);
     const double count = number(items[2]);
     if (!(from > 0 && to > 0) || count != std::floor(count) || count < 2 ||
         count > max_list_values) {
-      throw usage_error{option + " " + text +
-                        ": FROM and TO must be positive and COUNT a whole number from 2 to " +
-                        std::to_string(max_list_values)};
+      throw usage_error{option + " " + text + colon() +
+                        format(tr("FROM and TO must be positive and COUNT a whole number from 2 "
+                                  "to %d"),
+                               max_list_values)};
     }
     require_within(option, from, range);
     require_within(option, to, range);
@@ -136,8 +141,8 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
     for (double x : values)
       require_within(option, x, range);
     if (values.size() > max_list_values)
-      throw usage_error{option + " " + text + ": at most " + std::to_string(max_list_values) +
-                        " values"};
+      throw usage_error{option + " " + text + colon() +
+                        format(tr("at most %d values"), max_list_values)};
   }
   return values;
 }

@@ -19,6 +19,7 @@ namespace clothlab {
 struct given_values {
   std::string stage = "cloth", backend = "cpu", gl = "auto", integrator, start, pins, ground_z;
   std::string wind_dir, scaling, sweep_dt, sweep_k, sweep_n, sweep_time, drag, sphere;
+  std::string lang;  // (chosen before the others are read: parse_command_line)
   std::vector<std::string> real_parameters = std::vector<std::string>(parameter_table.size());
   std::vector<int> whole_parameters = std::vector<int>(parameter_table.size());
 };

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "app/run_control.hpp"
+#include "core/i18n.hpp"
 #include "gl/renderer.hpp"
 
 namespace clothlab {
@@ -20,7 +21,7 @@ int draw_png(const options& o, run_outputs& out, Draw&& draw) {
   }
   draw(scene_renderer, camera::default_for(o.stage));
   if (!save_framebuffer_png(out.png_write_path(), o.width, o.height, error)) {
-    report("--png %s: %s", o.png_path.c_str(), error.c_str());
+    report(tr("--png %s: %s"), o.png_path.c_str(), error.c_str());
     return exit_failure;
   }
   if (!out.check_png(error)) {

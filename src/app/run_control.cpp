@@ -4,6 +4,7 @@
 #include <cstdarg>
 
 #include "app/command_line.hpp"  // one_line
+#include "core/i18n.hpp"
 
 namespace clothlab {
 
@@ -39,7 +40,7 @@ void report(const char* format, ...) {
   va_start(arguments, format);
   std::vsnprintf(text, sizeof text, format, arguments);
   va_end(arguments);
-  std::fprintf(stderr, "clothlab: %s\n", one_line(text).c_str());
+  std::fprintf(stderr, tr("clothlab: %s\n"), one_line(text).c_str());
 }
 
 long clock_stride(std::size_t particles) {
@@ -76,7 +77,7 @@ void block_stop_signals(bool block) {
 int interrupted_before_the_run() {
   if (stop_signal == 0)
     return 0;
-  report("interrupted by %s before the run started; nothing written", signal_name(stop_signal));
+  report(tr("interrupted by %s before the run started; nothing written"), signal_name(stop_signal));
   return 128 + stop_signal;
 }
 

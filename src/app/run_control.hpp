@@ -11,6 +11,8 @@
 #include <cstddef>
 #include <cstdio>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 
 inline constexpr int exit_failure = 1;
@@ -61,7 +63,8 @@ class progress_line {
       return;
     last_ = now;
     const double percent = total_ > 0 ? 100.0 * double(done) / double(total_) : 100.0;
-    std::fprintf(stderr, "\rclothlab: %s %ld of %ld (%.1f %%)", unit_, done, total_, percent);
+    std::fputc('\r', stderr);
+    std::fprintf(stderr, tr("clothlab: %s %ld of %ld (%.1f %%)"), tr(unit_), done, total_, percent);
     std::fflush(stderr);
     shown_ = true;
   }

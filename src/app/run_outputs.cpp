@@ -3,6 +3,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 
 bool run_outputs::open(std::string& error) {
@@ -17,14 +19,16 @@ bool run_outputs::open(std::string& error) {
                {"--png", o_.png_path, png_file_, output_file::writer::file_name}};
   for (const auto& f : files) {
     if (!f.path.empty() && !f.file.open(f.path, f.kind, error)) {
-      error = std::string(f.option) + " " + f.path + ": cannot write: " + error;
+      error = std::string(f.option) + " " + f.path + colon() +
+              format(tr("cannot write: %s"), error.c_str());
       return false;
     }
   }
   if (!o_.csv_path.empty()) {
     states_.reset(std::fopen(csv_file_.write_path().c_str(), "w"));
     if (!states_) {
-      error = "--csv " + o_.csv_path + ": cannot write: " + std::strerror(errno);
+      error =
+          "--csv " + o_.csv_path + colon() + format(tr("cannot write: %s"), std::strerror(errno));
       return false;
     }
     write_csv_header(states_.get());
@@ -32,7 +36,8 @@ bool run_outputs::open(std::string& error) {
   if (!o_.energy_csv_path.empty()) {
     energies_.open(energy_file_.write_path());
     if (!energies_) {
-      error = "--energy-csv " + o_.energy_csv_path + ": cannot write: " + std::strerror(errno);
+      error = "--energy-csv " + o_.energy_csv_path + colon() +
+              format(tr("cannot write: %s"), std::strerror(errno));
       return false;
     }
     write_energy_csv_header(energies_);
@@ -48,7 +53,7 @@ bool run_outputs::write_obj_file(const spring_mesh& cloth, std::string& error) {
   };
   if (!write_obj(obj_file_.write_path(), cloth.grid_size(), cloth.particles(), cloth.normals(),
                  intact)) {
-    error = "--obj " + o_.obj_path + ": cannot write: " + std::strerror(errno);
+    error = "--obj " + o_.obj_path + colon() + format(tr("cannot write: %s"), std::strerror(errno));
     obj_file_.discard();
     return false;
   }
@@ -57,7 +62,7 @@ bool run_outputs::write_obj_file(const spring_mesh& cloth, std::string& error) {
 
 bool run_outputs::check_png(std::string& error) {
   if (!png_file_is_whole(png_file_.write_path())) {
-    error = "--png " + o_.png_path + ": error while writing (the image is incomplete)";
+    error = "--png " + o_.png_path + colon() + tr("error while writing (the image is incomplete)");
     png_file_.discard();
     return false;
   }
@@ -70,7 +75,8 @@ bool run_outputs::close(bool keep_csvs, bool keep_images, std::string& error) {
     bool written = std::ferror(states_.get()) == 0;
     written = std::fclose(states_.release()) == 0 && written;
     if (!written) {
-      error = "--csv " + o_.csv_path + ": error while writing: " + std::strerror(errno);
+      error = "--csv " + o_.csv_path + colon() +
+              format(tr("error while writing: %s"), std::strerror(errno));
       csv_file_.discard();
       ok = false;
     }
@@ -79,8 +85,9 @@ bool run_outputs::close(bool keep_csvs, bool keep_images, std::string& error) {
     errno = 0;
     energies_.close();
     if (!energies_) {
-      error = "--energy-csv " + o_.energy_csv_path + ": error while writing" +
-              (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string());
+      error = "--energy-csv " + o_.energy_csv_path + colon() +
+              (errno != 0 ? format(tr("error while writing: %s"), std::strerror(errno))
+                          : std::string(tr("error while writing")));
       energy_file_.discard();
       ok = false;
     }
@@ -116,7 +123,8 @@ bool run_outputs::commit(output_file& file, const char* option, std::string& err
   std::string why;
   if (file.commit(why))
     return true;
-  error = std::string(option) + " " + file.target() + ": cannot write: " + why;
+  error = std::string(option) + " " + file.target() + colon() +
+          format(tr("cannot write: %s"), why.c_str());
   return false;
 }
 

@@ -15,6 +15,7 @@
 #include "app/run_control.hpp"  // stop_signal
 #include "core/energy.hpp"
 #include "core/export.hpp"
+#include "core/i18n.hpp"
 #include "core/spring_mesh.hpp"
 
 namespace clothlab {
@@ -43,15 +44,13 @@ class run_outputs {
     energy_breakdown energy;
     if (energies_.is_open()) {
       energy = compute_energy(stage);
-      const std::pair<const char*, double> terms[] = {{"kinetic", energy.kinetic},
-                                                      {"gravity", energy.gravity},
-                                                      {"spring", energy.spring},
-                                                      {"total", energy.total}};
+      const std::pair<const char*, double> terms[] = {{N_("kinetic"), energy.kinetic},
+                                                      {N_("gravity"), energy.gravity},
+                                                      {N_("spring"), energy.spring},
+                                                      {N_("total"), energy.total}};
       for (const auto& [name, value] : terms) {
         if (!std::isfinite(value)) {
-          char text[96];
-          std::snprintf(text, sizeof text, "the %s energy %g J is not finite", name, value);
-          reason = text;
+          reason = format(tr("the %s energy %g J is not finite"), tr(name), value);
           return recorded::not_finite;
         }
       }

@@ -9,6 +9,7 @@
 #include "app/run_control.hpp"
 #include "app/step_error.hpp"
 #include "app/stop_watchdog.hpp"
+#include "core/i18n.hpp"
 #include "core/stability.hpp"
 
 namespace clothlab {
@@ -25,11 +26,10 @@ bool diverged(const options& o, const Stage& stage, long step, double time_step,
     return false;
   progress.clear();  // the message starts its own line
   const stability_estimate estimate = estimate_stability(stage);
-  report(
-      "the %s simulation diverged at step %ld (t = %g s): %s; dt omega_max = "
-      "%.3g (%s)",
-      std::string(stage_name(o.stage)).c_str(), step, double(step) * time_step,
-      status.reason.c_str(), time_step * estimate.omega_max, estimate.explanation.c_str());
+  report(tr("the %s simulation diverged at step %ld (t = %g s): %s; dt omega_max = "
+            "%.3g (%s)"),
+         std::string(stage_name(o.stage)).c_str(), step, double(step) * time_step,
+         status.reason.c_str(), time_step * estimate.omega_max, estimate.explanation.c_str());
   return true;
 }
 
@@ -45,7 +45,7 @@ int after_step(const options& o, const Stage& stage, long step, double time_step
   const run_outputs::recorded written = out.record(step, time_step, stage, reason);
   if (written == run_outputs::recorded::not_finite) {
     progress.clear();
-    report("the %s simulation diverged at step %ld (t = %g s): %s",
+    report(tr("the %s simulation diverged at step %ld (t = %g s): %s"),
            std::string(stage_name(o.stage)).c_str(), step, double(step) * time_step,
            reason.c_str());
     return exit_diverged;
@@ -53,10 +53,9 @@ int after_step(const options& o, const Stage& stage, long step, double time_step
   if (written == run_outputs::recorded::interrupted) {
     stopping.taken = true;
     progress.clear();
-    report(
-        "interrupted by %s while step %ld of %ld was being written; the CSV files hold the "
-        "steps written before it",
-        signal_name(stop_signal), step, o.steps);
+    report(tr("interrupted by %s while step %ld of %ld was being written; the CSV files hold the "
+              "steps written before it"),
+           signal_name(stop_signal), step, o.steps);
     return 128 + stop_signal;
   }
   stopping.last_step = step;
@@ -64,10 +63,9 @@ int after_step(const options& o, const Stage& stage, long step, double time_step
   if (stop_signal != 0) {
     stopping.taken = true;
     progress.clear();
-    report(
-        "interrupted by %s after step %ld of %ld (t = %g s); the CSV files hold the steps "
-        "written up to it",
-        signal_name(stop_signal), step, o.steps, double(step) * time_step);
+    report(tr("interrupted by %s after step %ld of %ld (t = %g s); the CSV files hold the steps "
+              "written up to it"),
+           signal_name(stop_signal), step, o.steps, double(step) * time_step);
     return 128 + stop_signal;
   }
   return 0;
@@ -91,7 +89,7 @@ const char* stage_class_name(stage_kind stage) {
 // stage.step()), divergence check, output.
 template <class Stage>
 int run_steps(const options& o, Stage& stage, run_outputs& out, double time_step) {
-  progress_line progress("step", o.steps, clock_stride(stage.particles().size()));
+  progress_line progress(N_("step"), o.steps, clock_stride(stage.particles().size()));
   for (long s = 0; s <= o.steps; ++s) {
     try {
       if (s > 0)
@@ -139,7 +137,7 @@ int run_batched(const options& o, cpu_cloth_paths& paths, run_outputs& out) {
   const spring_mesh& cloth = paths.cloth;
   const double dt = cloth.parameters.dynamics.time_step;
   const bool rows = !o.csv_path.empty() || !o.energy_csv_path.empty();
-  progress_line progress("step", o.steps, clock_stride(cloth.particles().size()));
+  progress_line progress(N_("step"), o.steps, clock_stride(cloth.particles().size()));
   if (const int status = after_step(o, cloth, 0, dt, out, progress); status != 0)
     return status;
   for (long s = 0; s < o.steps;) {
@@ -150,11 +148,10 @@ int run_batched(const options& o, cpu_cloth_paths& paths, run_outputs& out) {
     if (diverged_after != 0) {
       const long step = s + diverged_after;
       progress.clear();
-      report(
-          "the cloth simulation diverged at step %ld (t = %g s): a particle's "
-          "position or velocity is not finite, or its speed exceeds %g m/s (checked on "
-          "the %s path)",
-          step, double(step) * dt, paths.speed_bound(), backend_option(paths.backend()));
+      report(tr("the cloth simulation diverged at step %ld (t = %g s): a particle's "
+                "position or velocity is not finite, or its speed exceeds %g m/s (checked on "
+                "the %s path)"),
+             step, double(step) * dt, paths.speed_bound(), backend_option(paths.backend()));
       return exit_diverged;
     }
     s = next;

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "app/command_line.hpp"  // one_line
+#include "core/i18n.hpp"
 
 namespace clothlab {
 
@@ -44,10 +45,8 @@ std::string part_that_throws(Stage& fresh, const std::string& class_name, long f
 // The one line that reports it: "<function> threw at step S (t = T s): <what>".
 inline std::string step_error_line(const std::string& function, long step, double time_step,
                                    const std::exception& error) {
-  char when[64];
-  std::snprintf(when, sizeof when, " threw at step %ld (t = %g s): ", step,
-                double(step) * time_step);
-  return function + when + one_line(error.what());
+  return format(tr("%s threw at step %ld (t = %g s): %s"), function.c_str(), step,
+                double(step) * time_step, one_line(error.what()).c_str());
 }
 
 }  // namespace clothlab

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/run_control.hpp"
+#include "core/i18n.hpp"
 
 namespace clothlab {
 
@@ -37,27 +38,24 @@ void stop_watchdog::watch(const options& o, run_outputs& out) {
   std::string error;
   if (locked && step < 0) {  // still setting up: as if the run had not started
     out.close(false, false, error);
-    report("interrupted by %s before the run's first step was written; nothing written",
+    report(tr("interrupted by %s before the run's first step was written; nothing written"),
            signal_name(signal_number));
   } else if (locked && out.close(true, false, error)) {
     if (step == o.steps) {
-      report(
-          "interrupted by %s after the last step; the CSV files hold every step, the OBJ "
-          "and the PNG are not written",
-          signal_name(signal_number));
+      report(tr("interrupted by %s after the last step; the CSV files hold every step, the OBJ "
+                "and the PNG are not written"),
+             signal_name(signal_number));
     } else {
-      report(
-          "interrupted by %s after step %ld of %ld (the steps after it had not ended %ld ms "
-          "later); the CSV files hold the steps written up to it",
-          signal_name(signal_number), step, o.steps, long(stop_grace.count()));
+      report(tr("interrupted by %s after step %ld of %ld (the steps after it had not ended %ld ms "
+                "later); the CSV files hold the steps written up to it"),
+             signal_name(signal_number), step, o.steps, long(stop_grace.count()));
     }
   } else {
     if (locked)
       report("%s", error.c_str());
-    report(
-        "interrupted by %s after step %ld of %ld; the files were being written and none "
-        "is kept",
-        signal_name(signal_number), step, o.steps);
+    report(tr("interrupted by %s after step %ld of %ld; the files were being written and none "
+              "is kept"),
+           signal_name(signal_number), step, o.steps);
     out.discard();
   }
   std::fflush(stderr);

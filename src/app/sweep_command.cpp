@@ -16,6 +16,7 @@
 
 #include "app/run_control.hpp"
 #include "core/export.hpp"
+#include "core/i18n.hpp"
 #include "core/stability.hpp"
 #include "core/sweep.hpp"
 
@@ -73,11 +74,10 @@ bool sweep_within_bounds(const options& o, const sweep_settings& settings) {
   for (double dt : settings.time_steps) {
     const long per_cell = sweep_steps_per_cell(settings.simulated_time, dt);
     if (per_cell > max_sweep_steps_per_cell) {
-      report(
-          "%s: a cell of dt = %g s would take %.3g steps (%g s / dt), more "
-          "than the limit %ld; choose a larger dt or a shorter --sweep-time",
-          option.c_str(), dt, settings.simulated_time / dt, settings.simulated_time,
-          max_sweep_steps_per_cell);
+      report(tr("%s: a cell of dt = %g s would take %.3g steps (%g s / dt), more "
+                "than the limit %ld; choose a larger dt or a shorter --sweep-time"),
+             option.c_str(), dt, settings.simulated_time / dt, settings.simulated_time,
+             max_sweep_steps_per_cell);
       return false;
     }
     for (int n : rows) {
@@ -89,9 +89,9 @@ bool sweep_within_bounds(const options& o, const sweep_settings& settings) {
   const std::size_t cells = settings.time_steps.size() * rows.size();
   if (steps > max_sweep_steps || particle_steps > max_sweep_particle_steps) {
     report(
-        "%s: the sweep's %zu cells would take %.3g steps (%.3g particle steps, each cell's "
-        "set-up counted), more than the limit %.3g (%.3g particle steps); choose fewer cells, "
-        "a larger dt or a shorter --sweep-time",
+        tr("%s: the sweep's %zu cells would take %.3g steps (%.3g particle steps, each cell's "
+           "set-up counted), more than the limit %.3g (%.3g particle steps); choose fewer cells, "
+           "a larger dt or a shorter --sweep-time"),
         option.c_str(), cells, steps, particle_steps, max_sweep_steps, max_sweep_particle_steps);
     return false;
   }
@@ -149,12 +149,12 @@ int run_sweep_map(const options& o) {
   output_file file;
   std::string error;
   if (!file.open(o.sweep_path, output_file::writer::stream, error)) {
-    report("--sweep %s: cannot write: %s", o.sweep_path.c_str(), error.c_str());
+    report(tr("--sweep %s: cannot write: %s"), o.sweep_path.c_str(), error.c_str());
     return exit_failure;
   }
   std::ofstream stream(file.write_path());
   if (!stream) {
-    report("--sweep %s: cannot write: %s", o.sweep_path.c_str(), std::strerror(errno));
+    report(tr("--sweep %s: cannot write: %s"), o.sweep_path.c_str(), std::strerror(errno));
     return exit_failure;
   }
 
@@ -164,12 +164,12 @@ int run_sweep_map(const options& o) {
     errno = 0;
     stream.close();
     if (!stream) {
-      report("--sweep %s: error while writing: %s", o.sweep_path.c_str(),
+      report(tr("--sweep %s: error while writing: %s"), o.sweep_path.c_str(),
              std::strerror(errno != 0 ? errno : EIO));
       return exit_failure;
     }
     if (!file.commit(error)) {
-      report("--sweep %s: cannot write: %s", o.sweep_path.c_str(), error.c_str());
+      report(tr("--sweep %s: cannot write: %s"), o.sweep_path.c_str(), error.c_str());
       return exit_failure;
     }
     return 0;
@@ -179,7 +179,7 @@ int run_sweep_map(const options& o) {
                                         [](const sweep_cell& cell) { return cell.computed; });
     if (const int status = write_cells(done); status != 0)
       return status;
-    report("interrupted by %s after %ld of %zu sweep cells; %s holds those cells",
+    report(tr("interrupted by %s after %ld of %zu sweep cells; %s holds those cells"),
            signal_name(stop_signal), computed, done.size(), o.sweep_path.c_str());
     return 128 + stop_signal;
   };
@@ -202,7 +202,7 @@ int run_sweep_map(const options& o) {
   {
     const long total = long(settings.time_steps.size()) *
                        long(std::max(settings.stiffnesses.size(), settings.grid_sizes.size()));
-    progress_line line("sweep cell", total, 1);
+    progress_line line(N_("sweep cell"), total, 1);
     std::chrono::steady_clock::time_point deadline{};
     while (!started.load() || sweep.running()) {
       if (stop_signal != 0 && deadline == std::chrono::steady_clock::time_point{})
@@ -220,7 +220,7 @@ int run_sweep_map(const options& o) {
     starter.join();
   }
   if (!refused.empty()) {
-    report("--sweep %s: %s", o.sweep_path.c_str(), refused.c_str());
+    report(tr("--sweep %s: %s"), o.sweep_path.c_str(), refused.c_str());
     return exit_usage;  // the temporary file is removed with `file`
   }
   const std::vector<sweep_cell> cells = sweep.snapshot();
@@ -232,7 +232,7 @@ int run_sweep_map(const options& o) {
   // The map on standard output: one row per K (or N), one column per dt; '.' stable,
   // 'X' diverged, and '|' where dt first passes the cell's theoretical limit.
   const std::size_t columns = settings.time_steps.size();
-  std::printf("stability map (%s, %s): rows %s, columns dt from %.3g to %.3g s\n",
+  std::printf(tr("stability map (%s, %s): rows %s, columns dt from %.3g to %.3g s\n"),
               std::string(stage_name(o.stage)).c_str(),
               std::string(integrator_name(cells.front().integrator)).c_str(),
               settings.axis == sweep_axis::stiffness ? "K" : "N", settings.time_steps.front(),
@@ -255,8 +255,9 @@ int run_sweep_map(const options& o) {
     }
     std::putchar('\n');
   }
-  std::printf("  ('.' stable, 'X' diverged within %g s, '|' the theoretical limit; cells in %s)\n",
-              o.sweep_time, o.sweep_path.c_str());
+  std::printf(
+      tr("  ('.' stable, 'X' diverged within %g s, '|' the theoretical limit; cells in %s)\n"),
+      o.sweep_time, o.sweep_path.c_str());
   return 0;
 }
 

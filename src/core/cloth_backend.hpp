@@ -2,6 +2,8 @@
 // line's --backend, the window's switch, the headless runner and the cloth's paths all use it.
 #pragma once
 
+#include "core/i18n.hpp"  // N_: the window's names, translated where shown
+
 namespace clothlab {
 
 // The lab's readable CPU code (spring_mesh, double precision); the threaded and vectorised CPU
@@ -13,11 +15,11 @@ enum class cloth_backend { cpu, cpu_parallel, gpu, gpu_compute };
 constexpr const char* backend_name(cloth_backend backend) {
   switch (backend) {
     case cloth_backend::cpu_parallel:
-      return "CPU parallel";
+      return N_("CPU parallel");
     case cloth_backend::gpu:
       return "GPU";
     case cloth_backend::gpu_compute:
-      return "GPU compute";
+      return N_("GPU compute");
     case cloth_backend::cpu:
       break;
   }

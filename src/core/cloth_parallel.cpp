@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "core/grid_neighbours.hpp"  // spring_kinds: the neighbours ahead of a vertex
+#include "core/i18n.hpp"
 
 // The two loops that do the work are compiled three times, for AVX-512, AVX2 and the baseline
 // x86-64 (SSE2), and the first call picks the widest the CPU has (GCC's function
@@ -336,8 +337,9 @@ bool cloth_parallel::supports(const cloth_parameters& p, std::string& error) {
   const integrator_kind integrator = p.dynamics.integrator;
   if (integrator != integrator_kind::semi_implicit &&
       integrator != integrator_kind::explicit_euler && integrator != integrator_kind::xpbd) {
-    error = "integrator " + std::string(integrator_name(integrator)) +
-            ": the cpu-parallel path runs semi-implicit, explicit or xpbd only";
+    error = format(tr("integrator %s: the cpu-parallel path runs semi-implicit, explicit or xpbd "
+                      "only"),
+                   std::string(integrator_name(integrator)).c_str());
     return false;
   }
   if (integrator == integrator_kind::xpbd && !xpbd_available()) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/cloth_parallel.hpp"
+#include "core/i18n.hpp"
 
 namespace clothlab {
 
@@ -15,14 +16,17 @@ bool cloth_parallel::available() {
 
 const char* cloth_parallel::unavailable_reason() {
 #if defined(__EMSCRIPTEN__)
-  return "the parallel CPU path (cpu-parallel) needs OpenMP threads, which the browser build "
-         "does not have; use cpu";
+  return tr(
+      "the parallel CPU path (cpu-parallel) needs OpenMP threads, which the browser build "
+      "does not have; use cpu");
 #elif defined(CLOTHLAB_NO_OPENMP)
-  return "the parallel CPU path (--backend cpu-parallel) needs OpenMP, which this build does not "
-         "have (CMake found none: Apple's clang has none); use --backend cpu";
+  return tr(
+      "the parallel CPU path (--backend cpu-parallel) needs OpenMP, which this build does "
+      "not have (CMake found none: Apple's clang has none); use --backend cpu");
 #else
-  return "the parallel CPU path (--backend cpu-parallel) is in the teacher's copy: it computes "
-         "questions 6, 8, 9 and 13 itself; use --backend cpu";
+  return tr(
+      "the parallel CPU path (--backend cpu-parallel) is in the teacher's copy: it "
+      "computes questions 6, 8, 9 and 13 itself; use --backend cpu");
 #endif
 }
 

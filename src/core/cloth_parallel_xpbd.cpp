@@ -101,8 +101,7 @@ void cloth_parallel::step_xpbd(const cloth_parameters& p) {
   // The constraints of the step, as the readable path's apply_constraints: the sphere, the ground.
   if (p.sphere.enabled)
     apply_sphere_contact(p.sphere, d.time_step, state);
-  if (p.ground_enabled)
-    apply_ground_contact(p.ground_height, p.ground_friction, d.time_step, state);
+  apply_ground_contact(p, state);
 
   double *x = x_[current_].data(), *y = y_[current_].data(), *z = z_[current_].data();
   for (std::ptrdiff_t k = 0; k < count; ++k) {

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "core/i18n.hpp"
 #include "core/stability.hpp"
 
 namespace clothlab {
@@ -23,8 +24,8 @@ bool cpu_cloth_paths::load(cloth_backend target, std::string& error) {
       break;
     case cloth_backend::gpu:
     case cloth_backend::gpu_compute:
-      error = std::string("the ") + backend_name(target) +
-              " path needs OpenGL, which this program does not use";
+      error = format(tr("the %s path needs OpenGL, which this program does not use"),
+                     tr(backend_name(target)));
       loaded = false;
       break;
   }

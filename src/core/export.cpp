@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 namespace {
 
@@ -147,7 +149,7 @@ std::string temporary_pattern(std::string& error) {
   std::error_code ec;
   const std::filesystem::path folder = std::filesystem::temp_directory_path(ec);
   if (ec) {
-    error = "the temporary folder (TMPDIR): " + ec.message();
+    error = tr("the temporary folder (TMPDIR)") + std::string(colon()) + ec.message();
     return {};
   }
   return (folder / "clothlab-XXXXXX").string();

@@ -33,12 +33,10 @@ field_ref field_of_any_stage(const parameter& p, const stage_structs& structs) {
 }
 
 std::string range_text(const parameter& p, bool unit) {
-  std::string text = p.high == unbounded ? "at least " : "";
-  text += parameter_number(p.low);
   if (p.high == unbounded)
-    return text;
-  text += " to ";
-  text += parameter_number(p.high);
+    return format(tr("at least %s"), parameter_number(p.low).c_str());
+  std::string text =
+      format(tr("%s to %s"), parameter_number(p.low).c_str(), parameter_number(p.high).c_str());
   if (unit && !p.unit.empty()) {
     text += ' ';
     text += p.unit;
@@ -48,7 +46,7 @@ std::string range_text(const parameter& p, bool unit) {
 
 std::string default_text(const parameter& p) {
   if (!p.off.empty())
-    return std::string(p.off);
+    return tr(p.off.data());
   single_spring_parameters spring;
   coupled_springs_parameters coupled;
   cloth_parameters cloth;
@@ -59,8 +57,8 @@ std::string default_text(const parameter& p) {
   };
   std::vector<stage_default> values;
   for (const auto& [stage, name] :
-       {std::pair{stage_kind::spring, "spring"}, std::pair{stage_kind::coupled, "chain"},
-        std::pair{stage_kind::cloth, "cloth"}}) {
+       {std::pair{stage_kind::spring, tr("spring")}, std::pair{stage_kind::coupled, tr("chain")},
+        std::pair{stage_kind::cloth, tr("cloth")}}) {
     if (const field_ref field = p.field(defaults, stage))
       values.push_back({name, field});
   }
@@ -75,7 +73,7 @@ std::string default_text(const parameter& p) {
     const bool joins_next =
         i + 1 < values.size() && values[i + 1].field.get() == values[i].field.get();
     text += values[i].name;
-    text += joins_next ? std::string(" and ") : ' ' + parameter_number(values[i].field.get());
+    text += joins_next ? std::string(tr(" and ")) : ' ' + parameter_number(values[i].field.get());
     if (!joins_next && i + 1 < values.size())
       text += ", ";
   }
@@ -83,10 +81,10 @@ std::string default_text(const parameter& p) {
 }
 
 std::string help_text(const parameter& p) {
-  std::string text(p.help);
+  std::string text(tr(p.help.data()));
   if (!p.unit.empty())
     text += ", " + std::string(p.unit);
-  return text + ": " + range_text(p, false) + " [" + default_text(p) + "]";
+  return text + colon() + range_text(p, false) + " [" + default_text(p) + "]";
 }
 
 std::string doc_row(const parameter& p) {

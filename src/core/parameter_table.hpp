@@ -13,6 +13,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "core/i18n.hpp"  // N_: the help texts, translated where shown
 #include "core/parameters.hpp"
 
 namespace clothlab {
@@ -157,7 +158,7 @@ inline constexpr std::array parameter_table = {
         .high = 10.0,
         .slider = {1e-4, cloth_slider_max_time_step, true},
         .spring_stages_slider = slider_range{1e-4, spring_stages_slider_max_time_step, true},
-        .help = "Step length",
+        .help = N_("Step length"),
         .doc = "step length, {range} [{default}]",
     },
     parameter{
@@ -170,7 +171,7 @@ inline constexpr std::array parameter_table = {
         .high = unbounded,
         .slider = {0.0, 1.0 / cloth_slider_max_time_step},
         .spring_stages_slider = slider_range{0.0, 1.0 / spring_stages_slider_max_time_step},
-        .help = "Damping rate mu",
+        .help = N_("Damping rate mu"),
         .doc = "damping rate μ in 1/s, {range} [{default}]; μ dt must be at most 1 with the two "
                "Euler integrators, which multiply the velocity by (1 - μ dt), and μ h with "
                "`xpbd`, which multiplies it by (1 - μ h) every substep h (`verlet`, `rk4` and "
@@ -185,7 +186,7 @@ inline constexpr std::array parameter_table = {
         .low = 1e-6,
         .high = 1e6,
         .slider = {0.01, 10.0, true},
-        .help = "Mass of each moving particle",
+        .help = N_("Mass of each moving particle"),
         .doc = "mass of each moving particle, {range} [{default}]",
     },
     parameter{
@@ -196,9 +197,9 @@ inline constexpr std::array parameter_table = {
         .field = parameter_fields::dynamics<&dynamics_parameters::gravity>,
         .low = 0.0,
         .high = 1e3,
-        .below_low = "is a magnitude along -z: at least 0",
+        .below_low = N_("is a magnitude along -z: at least 0"),
         .slider = {0.0, 30.0},
-        .help = "Gravity g0 along -z",
+        .help = N_("Gravity g0 along -z"),
         .doc = "magnitude of gravity along -z, {range} [{default}]",
     },
     parameter{
@@ -250,7 +251,7 @@ inline constexpr std::array parameter_table = {
         .low = 0.0,
         .high = 1e9,
         .slider = {0.0, 1e5, true},
-        .help = "Stiffness of the spring stages",
+        .help = N_("Stiffness of the spring stages"),
         .doc = "stiffness of the single spring and of every spring of the chain, {range} "
                "[{default}]",
     },
@@ -263,7 +264,7 @@ inline constexpr std::array parameter_table = {
         .low = 0.0,
         .high = 1e9,
         .slider = {0.0, 1e5, true},
-        .help = "Cloth structural stiffness",
+        .help = N_("Cloth structural stiffness"),
         .doc = "stiffness of the structural springs, {range} [{default}]",
     },
     parameter{
@@ -275,7 +276,7 @@ inline constexpr std::array parameter_table = {
         .low = 0.0,
         .high = 1e9,
         .slider = {0.0, 1e5, true},
-        .help = "Cloth shear stiffness",
+        .help = N_("Cloth shear stiffness"),
         .doc = "stiffness of the shear springs, {range} [{default}]",
     },
     parameter{
@@ -287,7 +288,7 @@ inline constexpr std::array parameter_table = {
         .low = 0.0,
         .high = 1e9,
         .slider = {0.0, 1e5, true},
-        .help = "Cloth bending stiffness",
+        .help = N_("Cloth bending stiffness"),
         .doc = "stiffness of the bending springs, {range} [{default}]",
     },
     parameter{
@@ -298,7 +299,7 @@ inline constexpr std::array parameter_table = {
         .low = 1,
         .high = 1000,
         .slider = {1, 50},
-        .help = "Moving masses of the coupled stage",
+        .help = N_("Moving masses of the coupled stage"),
         .doc = "number of moving masses of the chain, {range} [{default}] (the window's slider "
                "goes to {slider_high})",
     },
@@ -310,7 +311,7 @@ inline constexpr std::array parameter_table = {
         .low = 2,
         .high = 1024,
         .slider = {2, 100},
-        .help = "Cloth grid size: N x N particles",
+        .help = N_("Cloth grid size: N x N particles"),
         .doc = "grid size, N x N particles, {range} [{default}] (the window's slider goes to "
                "{slider_high})",
     },
@@ -323,7 +324,7 @@ inline constexpr std::array parameter_table = {
         .low = 1e-3,
         .high = 1e3,
         .slider = {0.2, 4.0},
-        .help = "Cloth side length",
+        .help = N_("Cloth side length"),
         .doc = "side length, {range} [{default}]",
     },
     parameter{
@@ -335,7 +336,7 @@ inline constexpr std::array parameter_table = {
         .low = -1e6,
         .high = 1e6,
         .slider = {0.0, 20.0},  // stronger wind folds the default cloth through itself
-        .help = "Wind strength K_w",
+        .help = N_("Wind strength K_w"),
         .doc = "wind strength K_w, {range} [{default}: no wind]",
     },
     parameter{
@@ -347,7 +348,7 @@ inline constexpr std::array parameter_table = {
         .low = 0.0,
         .high = unbounded,
         .slider = {0.0, 1.0 / cloth_slider_max_time_step},
-        .help = "Ground friction rate mu_g",
+        .help = N_("Ground friction rate mu_g"),
         .doc = "ground friction rate μ_g in 1/s, {range}, with μ_g dt at most 1 [{default}]",
     },
     parameter{
@@ -358,7 +359,7 @@ inline constexpr std::array parameter_table = {
         .low = 2,
         .high = 1024,
         .slider = {2, 100},
-        .help = "Grid whose particles have --mass and springs the K (resolution-independent)",
+        .help = N_("Grid whose particles have --mass and springs the K (resolution-independent)"),
         .doc = "the reference grid of the `resolution-independent` scaling, {range} [{default}]",
     },
     parameter{
@@ -370,7 +371,7 @@ inline constexpr std::array parameter_table = {
         .low = 0.0,
         .high = 1e9,
         .slider = {1.0, 1e5, true},
-        .help = "Drag spring K_d (--drag, and the mouse on every stage)",
+        .help = N_("Drag spring K_d (--drag, and the mouse on every stage)"),
         .doc = "the drag spring's stiffness, {range} [{default}]; on every stage, where it is "
                "also the mouse's drag spring in the window (stages 1 and 2 take it too)",
     },
@@ -383,7 +384,7 @@ inline constexpr std::array parameter_table = {
         .low = 0.0,
         .high = unbounded,
         .slider = {0.0, 1.0 / cloth_slider_max_time_step},
-        .help = "Sphere friction rate mu_s",
+        .help = N_("Sphere friction rate mu_s"),
         .doc = "the sphere's friction rate in 1/s, {range} [{default}]; μ_s dt must be at most 1",
     },
     parameter{
@@ -393,9 +394,9 @@ inline constexpr std::array parameter_table = {
         .field = parameter_fields::cloth<&cloth_parameters::tear_strain>,
         .low = 1e-6,
         .high = 100.0,
-        .off = "never",
+        .off = N_("never"),
         .slider = {0.0, 3.0},  // 0: off
-        .help = "Tearing: a spring longer than (1 + E) L0 breaks",
+        .help = N_("Tearing: a spring longer than (1 + E) L0 breaks"),
         .doc = "a spring longer than (1 + E) L0 tears for the rest of the run, E from {range} "
                "[{default}]. The OBJ (and the picture) leave out the triangles that lost a "
                "spring. Every path",
@@ -408,10 +409,10 @@ inline constexpr std::array parameter_table = {
         .field = parameter_fields::cloth<&cloth_parameters::self_collision_thickness>,
         .low = 1e-3,
         .high = 1e3,
-        .off = "off",
+        .off = N_("off"),
         // The window's slider also stops at the shortest rest length h, where the model clamps D.
         .slider = {0.001, 0.2, true},
-        .help = "Self-collision thickness D",
+        .help = N_("Self-collision thickness D"),
         .doc = "non-neighbour particles are kept D apart ({range}) [{default}]; a D above the "
                "shortest rest length h = `--size` / (N - 1) is clamped to h, with a warning on "
                "standard error in a headless run (`docs/model.md`). The CPU paths only"},
@@ -423,6 +424,7 @@ constexpr const parameter& parameter_named(std::string_view option) {
     if (p.option == option)
       return p;
   }
+  // (not translated: a programming error)
   throw std::invalid_argument("no parameter named " + std::string(option));
 }
 

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 
 std::string_view stage_name(stage_kind stage) {
@@ -22,17 +24,17 @@ std::string_view stage_name(stage_kind stage) {
 std::string_view integrator_name(integrator_kind kind) {
   switch (kind) {
     case integrator_kind::semi_implicit:
-      return "semi-implicit";
+      return N_("semi-implicit");
     case integrator_kind::explicit_euler:
-      return "explicit";
+      return N_("explicit");
     case integrator_kind::velocity_verlet:
-      return "verlet";
+      return N_("verlet");
     case integrator_kind::runge_kutta_4:
-      return "rk4";
+      return N_("rk4");
     case integrator_kind::implicit_euler:
-      return "implicit";
+      return N_("implicit");
     case integrator_kind::xpbd:
-      return "xpbd";
+      return N_("xpbd");
   }
   return "?";
 }
@@ -110,6 +112,7 @@ cloth_parameters effective_cloth_parameters(const cloth_parameters& parameters) 
 
 void check_effective(const cloth_parameters& parameters, const char* who) {
   if (parameters.scaling != resolution_scaling::per_particle)
+    // (not translated: a programming error)
     throw std::invalid_argument(std::string(who) +
                                 ": takes the parameters at the loaded N "
                                 "(effective_cloth_parameters), not resolution-independent ones");

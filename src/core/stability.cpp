@@ -7,6 +7,8 @@
 #include <limits>
 #include <vector>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 namespace {
 
@@ -98,7 +100,7 @@ double first_unstable_time_step(integrator_kind integrator, double omega, double
 std::string format_seconds(double seconds) {
   char text[32];
   if (std::isinf(seconds))
-    return "none";
+    return tr("none");
   std::snprintf(text, sizeof text, "%.3g ms", seconds * 1e3);
   return text;
 }
@@ -178,7 +180,6 @@ stability_estimate estimate_stability(const particle_system& particles,
   estimate.ratio = std::isinf(estimate.time_step_limit) ? 0.0
                    : estimate.time_step_limit == 0.0    ? infinity
                                                         : dt / estimate.time_step_limit;
-  char line[256];
   const std::string name(integrator_name(dynamics.integrator));
   if (dynamics.integrator == integrator_kind::xpbd) {
     // What XPBD pays instead of a limit: over a substep h, (omega h)^2 = w / alpha~ compares the
@@ -186,30 +187,29 @@ stability_estimate estimate_stability(const particle_system& particles,
     // softer than K (docs/stability.md).
     const double h = dt / std::max(dynamics.xpbd.substeps, 1);
     const double stiffness_ratio = std::pow(estimate.omega_max * h, 2);
-    std::snprintf(line, sizeof line,
-                  "%s: no step-size limit (omega_max <= %.4g rad/s); substep h = %s, "
-                  "(omega h)^2 = %.3g%s",
-                  name.c_str(), estimate.omega_max, format_seconds(h).c_str(), stiffness_ratio,
-                  stiffness_ratio > 1 ? ": softer than K unless more substeps or iterations"
-                                      : ": the springs reach K");
+    estimate.explanation =
+        format(tr("%s: no step-size limit (omega_max <= %.4g rad/s); substep h = %s, "
+                  "(omega h)^2 = %.3g%s"),
+               tr(name.c_str()), estimate.omega_max, format_seconds(h).c_str(), stiffness_ratio,
+               stiffness_ratio > 1 ? tr(": softer than K unless more substeps or iterations")
+                                   : tr(": the springs reach K"));
   } else if (std::isinf(estimate.time_step_limit)) {
-    std::snprintf(line, sizeof line,
-                  "%s: no step-size limit (omega_max <= %.4g rad/s, dt omega = %.3g)", name.c_str(),
-                  estimate.omega_max, dt * estimate.omega_max);
+    estimate.explanation =
+        format(tr("%s: no step-size limit (omega_max <= %.4g rad/s, dt omega = %.3g)"),
+               tr(name.c_str()), estimate.omega_max, dt * estimate.omega_max);
   } else if (estimate.time_step_limit == 0.0) {
-    std::snprintf(line, sizeof line,
-                  "%s without damping grows by sqrt(1 + (dt omega)^2) per step at any dt "
-                  "(omega_max <= %.4g rad/s): add damping mu > omega^2 dt",
-                  name.c_str(), estimate.omega_max);
+    estimate.explanation =
+        format(tr("%s without damping grows by sqrt(1 + (dt omega)^2) per step at any dt "
+                  "(omega_max <= %.4g rad/s): add damping mu > omega^2 dt"),
+               tr(name.c_str()), estimate.omega_max);
   } else {
-    std::snprintf(
-        line, sizeof line,
-        "%s: stable while dt < %s (omega_max <= %.4g rad/s); dt = %s is %.3g x the limit%s",
-        name.c_str(), format_seconds(estimate.time_step_limit).c_str(), estimate.omega_max,
-        format_seconds(dt).c_str(), estimate.ratio,
-        estimate.ratio >= 1 ? ": expect divergence, lower dt or K" : "");
+    estimate.explanation =
+        format(tr("%s: stable while dt < %s (omega_max <= %.4g rad/s); dt = %s is %.3g x the "
+                  "limit%s"),
+               tr(name.c_str()), format_seconds(estimate.time_step_limit).c_str(),
+               estimate.omega_max, format_seconds(dt).c_str(), estimate.ratio,
+               estimate.ratio >= 1 ? tr(": expect divergence, lower dt or K") : "");
   }
-  estimate.explanation = line;
   return estimate;
 }
 
@@ -235,11 +235,12 @@ divergence_status divergence_check(const particle_system& particles, double spee
     const glm::dvec3 p = particles.get_position(k);
     const glm::dvec3 v = particles.get_velocity(k);
     const double speed_squared = glm::dot(v, v);
-    char line[160];
+    char line[256];
     if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed_squared)) {
-      std::snprintf(line, sizeof line, "particle %zu has a non-finite position or velocity", k);
+      std::snprintf(line, sizeof line, tr("particle %zu has a non-finite position or velocity"), k);
     } else if (speed_squared > bound_squared) {
-      std::snprintf(line, sizeof line, "speed %.3g m/s of particle %zu exceeds the bound %.3g m/s",
+      std::snprintf(line, sizeof line,
+                    tr("speed %.3g m/s of particle %zu exceeds the bound %.3g m/s"),
                     std::sqrt(speed_squared), k, speed_bound);
     } else {
       continue;

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/i18n.hpp"
 #include "core/stability.hpp"
 #include "core/wall_clock.hpp"
 #include "core/xpbd.hpp"
@@ -24,8 +25,8 @@ void cloth_paths::check_compute_offered() {
   compute_unavailable_.clear();
   if (gpu_cloth_compute::available(compute_unavailable_) &&
       !std::filesystem::exists(shader_path("gpu_compute_step.comp")))
-    compute_unavailable_ = "this copy of the lab has no compute path (" +
-                           shader_path("gpu_compute_step.comp").string() + " is missing)";
+    compute_unavailable_ = format(tr("this copy of the lab has no compute path (%s is missing)"),
+                                  shader_path("gpu_compute_step.comp").string().c_str());
 }
 
 bool cloth_paths::runs(cloth_backend target, const cloth_parameters& p, std::string& why) {

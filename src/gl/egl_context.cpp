@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/i18n.hpp"
 #include "gl/gl.hpp"
 #include "gl/gl_context.hpp"
 
@@ -98,12 +99,12 @@ EGLDisplay open_display(std::string& origin) {
   for (EGLDeviceEXT device : devices_hardware_first()) {
     EGLDisplay display = platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
     if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr)) {
-      origin = is_software(device) ? "through EGL (Mesa's software device)"
-                                   : "through EGL (a hardware device)";
+      origin = is_software(device) ? tr("through EGL (Mesa's software device)")
+                                   : tr("through EGL (a hardware device)");
       return display;
     }
   }
-  origin = "through EGL (Mesa's surfaceless platform)";
+  origin = tr("through EGL (Mesa's surfaceless platform)");
   EGLDisplay display =
       platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr))
@@ -123,14 +124,14 @@ bool egl_hardware_device_available() {
 
 std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std::string& error) {
   if (width < 1 || height < 1) {
-    error = "off-screen buffer " + std::to_string(width) + "x" + std::to_string(height) +
-            ": both sides must be at least 1 pixel";
+    error =
+        format(tr("off-screen buffer %dx%d: both sides must be at least 1 pixel"), width, height);
     return nullptr;
   }
   std::string origin;
   EGLDisplay display = open_display(origin);
   if (display == EGL_NO_DISPLAY) {
-    error = "EGL found no device and no surfaceless platform to render on";
+    error = tr("EGL found no device and no surfaceless platform to render on");
     return nullptr;
   }
   const EGLint config_attributes[] = {EGL_SURFACE_TYPE,
@@ -152,15 +153,14 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
   EGLint configs = 0;
   if (!eglChooseConfig(display, config_attributes, &config, 1, &configs) || configs < 1) {
     eglTerminate(display);
-    error = "EGL has no RGBA8 pbuffer configuration for OpenGL";
+    error = tr("EGL has no RGBA8 pbuffer configuration for OpenGL");
     return nullptr;
   }
   const EGLint surface_attributes[] = {EGL_WIDTH, width, EGL_HEIGHT, height, EGL_NONE};
   EGLSurface surface = eglCreatePbufferSurface(display, config, surface_attributes);
   if (surface == EGL_NO_SURFACE || !eglBindAPI(EGL_OPENGL_API)) {
     eglTerminate(display);
-    error = "EGL could not create a " + std::to_string(width) + "x" + std::to_string(height) +
-            " pbuffer for OpenGL";
+    error = format(tr("EGL could not create a %dx%d pbuffer for OpenGL"), width, height);
     return nullptr;
   }
   // 4.3 core (compute shaders) where the driver has it, else 3.3 core.
@@ -180,13 +180,13 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
   if (context == EGL_NO_CONTEXT) {
     eglDestroySurface(display, surface);
     eglTerminate(display);
-    error = "EGL could not create an OpenGL 3.3 core context";
+    error = tr("EGL could not create an OpenGL 3.3 core context");
     return nullptr;
   }
   auto result =
       std::make_unique<egl_context>(display, context, surface, width, height, std::move(origin));
   if (!eglMakeCurrent(display, surface, surface, context)) {
-    error = "EGL could not make its context current";
+    error = tr("EGL could not make its context current");
     return nullptr;
   }
   return result;

@@ -37,6 +37,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/i18n.hpp"
 #include "gl/gl_state_guard.hpp"
 #include "gl/grid_textures.hpp"
 
@@ -101,20 +102,20 @@ bool gpu_cloth::check_grid_size(int grid_size, std::string& error) {
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_size);
   std::array<GLint, 2> max_viewport{};
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport.data());
-  const std::string n = "grid size N=" + std::to_string(grid_size);
   if (grid_size < 2) {
-    error = n + ": must be at least 2";
+    error = format(tr("grid size N=%d: must be at least 2"), grid_size);
     return false;
   }
   if (grid_size > max_texture_size) {
-    error = n + ": too large for the GPU cloth, whose N x N textures are limited to " +
-            std::to_string(max_texture_size) + " texels a side here (GL_MAX_TEXTURE_SIZE)";
+    error = format(tr("grid size N=%d: too large for the GPU cloth, whose N x N textures are "
+                      "limited to %d texels a side here (GL_MAX_TEXTURE_SIZE)"),
+                   grid_size, max_texture_size);
     return false;
   }
   if (grid_size > max_viewport[0] || grid_size > max_viewport[1]) {
-    error = n + ": too large for the GPU cloth, whose N x N passes are limited to " +
-            std::to_string(max_viewport[0]) + " x " + std::to_string(max_viewport[1]) +
-            " pixels here (GL_MAX_VIEWPORT_DIMS)";
+    error = format(tr("grid size N=%d: too large for the GPU cloth, whose N x N passes are "
+                      "limited to %d x %d pixels here (GL_MAX_VIEWPORT_DIMS)"),
+                   grid_size, max_viewport[0], max_viewport[1]);
     return false;
   }
   return true;
@@ -126,13 +127,12 @@ bool gpu_cloth::supports_integrator(integrator_kind integrator, std::string& err
     return true;
   }
   if (integrator == integrator_kind::xpbd) {
-    error =
-        "integrator xpbd: the fragment GPU path runs the mass-spring integrators "
-        "(semi-implicit and explicit) only; XPBD runs on GPU compute";
+    error = tr("integrator xpbd: the fragment GPU path runs the mass-spring integrators "
+               "(semi-implicit and explicit) only; XPBD runs on GPU compute");
     return false;
   }
-  error = "integrator " + std::string(integrator_name(integrator)) +
-          ": the GPU path runs semi-implicit or explicit only";
+  error = format(tr("integrator %s: the GPU path runs semi-implicit or explicit only"),
+                 std::string(integrator_name(integrator)).c_str());
   return false;
 }
 
@@ -140,8 +140,9 @@ bool gpu_cloth::supports(const cloth_parameters& p, std::string& error) {
   if (!supports_integrator(p.dynamics.integrator, error))
     return false;
   if (p.self_collision_thickness > 0.0) {
-    error = "self-collision (--self-collision " + std::to_string(p.self_collision_thickness) +
-            "): the GPU paths have no self-collision; run the cloth on the CPU";
+    error = format(tr("self-collision (--self-collision %s): the GPU paths have no "
+                      "self-collision; run the cloth on the CPU"),
+                   std::to_string(p.self_collision_thickness).c_str());
     return false;
   }
   return true;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "core/i18n.hpp"
 #include "core/xpbd.hpp"
 #include "gl/gl_state_guard.hpp"
 #include "gl/gpu_cloth.hpp"
@@ -16,8 +17,8 @@ namespace clothlab {
 // shows it greyed with this reason, and nothing of it can be loaded or run.
 bool gpu_cloth_compute::available(std::string& error) {
   error =
-      "the compute-shader GPU path needs OpenGL 4.3 compute shaders, which WebGL2 (this "
-      "browser's GL) does not have";
+      tr("the compute-shader GPU path needs OpenGL 4.3 compute shaders, which WebGL2 (this "
+         "browser's GL) does not have");
   return false;
 }
 bool gpu_cloth_compute::supports(const cloth_parameters&, std::string& error) {
@@ -90,8 +91,8 @@ bool gpu_cloth_compute::available(std::string& error) {
   glGetIntegerv(GL_MINOR_VERSION, &minor);
   if (major > 4 || (major == 4 && minor >= 3))
     return true;
-  error = "the compute-shader path needs OpenGL 4.3; this context has " + std::to_string(major) +
-          "." + std::to_string(minor);
+  error =
+      format(tr("the compute-shader path needs OpenGL 4.3; this context has %d.%d"), major, minor);
   return false;
 }
 
@@ -99,8 +100,9 @@ bool gpu_cloth_compute::supports(const cloth_parameters& p, std::string& error) 
   if (p.dynamics.integrator != integrator_kind::xpbd)
     return gpu_cloth::supports(p, error);
   if (p.self_collision_thickness > 0.0) {
-    error = "self-collision (--self-collision " + std::to_string(p.self_collision_thickness) +
-            "): the GPU paths have no self-collision; run the cloth on the CPU";
+    error = format(tr("self-collision (--self-collision %s): the GPU paths have no "
+                      "self-collision; run the cloth on the CPU"),
+                   std::to_string(p.self_collision_thickness).c_str());
     return false;
   }
   return true;

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 
 // An N x N texture read with texelFetch (nearest filtering, no mipmaps), filled from `data`.
@@ -46,10 +48,9 @@ GLuint create_framebuffer(std::initializer_list<GLuint> targets, std::string& er
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     char status_hex[16];
     std::snprintf(status_hex, sizeof status_hex, "0x%04X", status);
-    error =
-        "the GPU cloth needs to render into GL_RGBA32F and GL_R32UI textures, which this "
-        "OpenGL driver refuses (framebuffer status " +
-        std::string(status_hex) + ")";
+    error = format(tr("the GPU cloth needs to render into GL_RGBA32F and GL_R32UI textures, "
+                      "which this OpenGL driver refuses (framebuffer status %s)"),
+                   status_hex);
     glDeleteFramebuffers(1, &framebuffer);
     return 0;
   }

@@ -7,6 +7,7 @@
 #include "gl/gl.hpp"  // GLEW, which must come before GLFW
 #include "gl/gl_context.hpp"
 
+#include "core/i18n.hpp"
 #include "gl/glfw_errors.hpp"  // GLFW
 
 namespace clothlab {
@@ -24,7 +25,7 @@ class hidden_window_context final : public gl_context {
 
   int framebuffer_width() const override { return size().first; }
   int framebuffer_height() const override { return size().second; }
-  std::string origin() const override { return "in a hidden GLFW window (no OSMesa, no EGL)"; }
+  std::string origin() const override { return tr("in a hidden GLFW window (no OSMesa, no EGL)"); }
 
  private:
   std::pair<int, int> size() const {
@@ -39,8 +40,8 @@ class hidden_window_context final : public gl_context {
 
 std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std::string& error) {
   if (width < 1 || height < 1) {
-    error = "off-screen buffer " + std::to_string(width) + "x" + std::to_string(height) +
-            ": both sides must be at least 1 pixel";
+    error =
+        format(tr("off-screen buffer %dx%d: both sides must be at least 1 pixel"), width, height);
     return nullptr;
   }
   keep_glfw_errors();
@@ -48,9 +49,9 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
   glfwInitHint(GLFW_COCOA_CHDIR_RESOURCES, GLFW_FALSE);
   if (glfwInit() != GLFW_TRUE) {
     error =
-        "this build renders off screen in a hidden GLFW window (it has neither OSMesa nor "
-        "EGL), which needs a display: " +
-        last_glfw_error() + ". Under Linux, run it with `xvfb-run -a`.";
+        format(tr("this build renders off screen in a hidden GLFW window (it has neither OSMesa "
+                  "nor EGL), which needs a display: %s. Under Linux, run it with `xvfb-run -a`."),
+               last_glfw_error().c_str());
     return nullptr;
   }
   // 4.3 core (compute shaders) where the driver has it, else 3.3 core (macOS: 4.1).
@@ -69,7 +70,8 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
       break;
   }
   if (window == nullptr) {
-    error = "cannot create a hidden window with an OpenGL 3.3 core context: " + last_glfw_error();
+    error = format(tr("cannot create a hidden window with an OpenGL 3.3 core context: %s"),
+                   last_glfw_error().c_str());
     glfwTerminate();
     return nullptr;
   }
@@ -77,7 +79,7 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
   glfwMakeContextCurrent(window);
   glewExperimental = GL_TRUE;
   if (const GLenum status = glewInit(); status != GLEW_OK) {
-    error = std::string("GLEW cannot load the OpenGL functions: ") +
+    error = std::string(tr("GLEW cannot load the OpenGL functions:")) + " " +
             reinterpret_cast<const char*>(glewGetErrorString(status));
     return nullptr;
   }

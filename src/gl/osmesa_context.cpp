@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "core/i18n.hpp"
 #include "gl/gl.hpp"
 #include "gl/gl_context.hpp"
 
@@ -27,7 +28,7 @@ class osmesa_context final : public gl_context {
   }
   int framebuffer_width() const override { return width_; }
   int framebuffer_height() const override { return height_; }
-  std::string origin() const override { return "through OSMesa"; }
+  std::string origin() const override { return tr("through OSMesa"); }
 
  private:
   OSMesaContext context_;
@@ -40,8 +41,8 @@ class osmesa_context final : public gl_context {
 
 std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std::string& error) {
   if (width < 1 || height < 1) {
-    error = "off-screen buffer " + std::to_string(width) + "x" + std::to_string(height) +
-            ": both sides must be at least 1 pixel";
+    error =
+        format(tr("off-screen buffer %dx%d: both sides must be at least 1 pixel"), width, height);
     return nullptr;
   }
   // 4.3 core (compute shaders) where Mesa has it, else 3.3 core.
@@ -67,12 +68,12 @@ std::unique_ptr<gl_context> create_offscreen_context(int width, int height, std:
       break;
   }
   if (context == nullptr) {
-    error = "OSMesa could not create an OpenGL 3.3 core context";
+    error = tr("OSMesa could not create an OpenGL 3.3 core context");
     return nullptr;
   }
   auto result = std::make_unique<osmesa_context>(context, width, height);
   if (!result->make_current()) {
-    error = "OSMesa could not make its context current";
+    error = tr("OSMesa could not make its context current");
     return nullptr;
   }
   OSMesaPixelStore(OSMESA_Y_UP, 1);

@@ -6,13 +6,14 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/i18n.hpp"
 #include "gl/gl.hpp"
 
 namespace clothlab {
 
 bool framebuffer_png(int width, int height, std::vector<unsigned char>& png, std::string& error) {
   if (width < 1 || height < 1) {
-    error = "cannot save a " + std::to_string(width) + "x" + std::to_string(height) + " image";
+    error = format(tr("cannot save a %dx%d image"), width, height);
     return false;
   }
   const auto row_bytes = static_cast<std::size_t>(width) * 4;
@@ -37,7 +38,7 @@ bool framebuffer_png(int width, int height, std::vector<unsigned char>& png, std
   };
   if (stbi_write_png_to_func(append, &png, width, height, 4, image.data(),
                              static_cast<int>(row_bytes)) == 0) {
-    error = "cannot encode the PNG image";
+    error = tr("cannot encode the PNG image");
     return false;
   }
   return true;
@@ -46,12 +47,12 @@ bool framebuffer_png(int width, int height, std::vector<unsigned char>& png, std
 bool save_framebuffer_png(const std::string& path, int width, int height, std::string& error) {
   std::vector<unsigned char> png;
   if (!framebuffer_png(width, height, png, error)) {
-    error = path + ": " + error;
+    error = path + colon() + error;
     return false;
   }
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (file == nullptr) {
-    error = path + ": cannot write the PNG image";
+    error = path + colon() + tr("cannot write the PNG image");
     return false;
   }
   // Every write checked: a full disk must not leave a truncated PNG behind.
@@ -60,7 +61,7 @@ bool save_framebuffer_png(const std::string& path, int width, int height, std::s
     std::error_code ignored;
     if (std::filesystem::is_regular_file(path, ignored))  // never a device such as /dev/full
       std::filesystem::remove(path, ignored);
-    error = path + ": the PNG image could not be written whole (is the disk full?)";
+    error = path + colon() + tr("the PNG image could not be written whole (is the disk full?)");
     return false;
   }
   return true;

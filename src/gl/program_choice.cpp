@@ -1,6 +1,6 @@
 #include "gl/program_choice.hpp"
 
-#include "gl/executable_path.hpp"
+#include "core/executable_path.hpp"
 
 #include <unistd.h>
 
@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+
+#include "core/i18n.hpp"
 
 namespace clothlab {
 
@@ -31,7 +33,8 @@ int hand_over_to(const char* who, const char* name, const std::vector<std::strin
     args.push_back(argument.data());
   args.push_back(nullptr);
   ::execv(program.c_str(), args.data());
-  std::fprintf(stderr, "%s: cannot start %s: %s\n", who, program.c_str(), std::strerror(errno));
+  std::fprintf(stderr, "%s%s%s\n", who, colon(),
+               format(tr("cannot start %s: %s"), program.c_str(), std::strerror(errno)).c_str());
   return 1;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/i18n.hpp"
 #include "gl/renderer_impl.hpp"
 
 namespace clothlab {
@@ -65,7 +66,8 @@ bool renderer::impl::load_cloth_texture(std::string& error) {
   // Row 0 of the image (its top) becomes v = 0, the row of particles kv = 0.
   stbi_uc* pixels = stbi_load(path.string().c_str(), &width, &height, &channels, 4);
   if (pixels == nullptr) {
-    error = path.string() + ": cannot load the cloth texture: " + stbi_failure_reason();
+    error = path.string() + colon() +
+            format(tr("cannot load the cloth texture: %s"), stbi_failure_reason());
     return false;
   }
   glGenTextures(1, &cloth_texture);

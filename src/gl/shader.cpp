@@ -1,6 +1,6 @@
 #include "gl/shader.hpp"
 
-#include "gl/executable_path.hpp"
+#include "core/executable_path.hpp"
 
 #include <cctype>
 #include <cstdlib>
@@ -8,6 +8,8 @@
 #include <sstream>
 #include <utility>
 #include <vector>
+
+#include "core/i18n.hpp"
 
 namespace clothlab {
 namespace {
@@ -77,12 +79,13 @@ bool expand_includes(const std::filesystem::path& path, std::string& source,
     const auto included = shader_path(name);
     std::string text;
     if (!read_text(included, text)) {
-      error =
-          included.string() + ": cannot read the shader file (included by " + path.string() + ")";
+      error = included.string() + colon() +
+              format(tr("cannot read the shader file (included by %s)"), path.string().c_str());
       return false;
     }
     if (text.find("\n#include") != std::string::npos || text.rfind("#include", 0) == 0) {
-      error = included.string() + ": an included shader file includes another (one level only)";
+      error = included.string() + colon() +
+              tr("an included shader file includes another (one level only)");
       return false;
     }
     files.push_back("shaders/" + name);
@@ -140,13 +143,13 @@ GLuint compile(GLenum type, std::string_view header, std::string_view file_name,
   const auto path = shader_path(file_name);
   std::string source;
   if (!read_text(path, source)) {
-    error = path.string() + ": cannot read the shader file";
+    error = path.string() + colon() + tr("cannot read the shader file");
     return 0;
   }
   if (source.starts_with("#version")) {
-    error = path.string() +
-            ": begins with a #version line; remove it, the loader adds the version "
-            "(src/gl/shader.cpp)";
+    error = path.string() + colon() +
+            tr("begins with a #version line; remove it, the loader adds the version "
+               "(src/gl/shader.cpp)");
     return 0;
   }
   std::vector<std::string> files = {"shaders/" + std::string(file_name)};
@@ -165,7 +168,8 @@ GLuint compile(GLenum type, std::string_view header, std::string_view file_name,
     glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
     glGetShaderInfoLog(shader, length, nullptr, log.data());
-    error = path.string() + ": does not compile (each message names its file and line):\n" +
+    error = path.string() + colon() +
+            tr("does not compile (each message names its file and line):") + "\n" +
             name_source_strings(log.c_str(), files);
     glDeleteShader(shader);
     return 0;
@@ -227,8 +231,8 @@ bool shader_program::load(std::string_view vertex_file, std::string_view fragmen
 
 bool shader_program::load_compute(std::string_view compute_file, std::string& error) {
 #if defined(CLOTHLAB_GL_WEB)
-  error = shader_path(compute_file).string() +
-          ": a compute shader needs OpenGL 4.3, and WebGL2 has no compute shaders";
+  error = shader_path(compute_file).string() + colon() +
+          tr("a compute shader needs OpenGL 4.3, and WebGL2 has no compute shaders");
   return false;
 #else
   GLuint compute = compile(GL_COMPUTE_SHADER, desktop_compute_header, compute_file, error);
@@ -253,7 +257,7 @@ bool shader_program::link(std::initializer_list<GLuint> shaders, const std::stri
     glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
     glGetProgramInfoLog(program, length, nullptr, log.data());
-    error = files + ": do not link:\n" + log.c_str();
+    error = files + colon() + tr("do not link:") + "\n" + log.c_str();
     glDeleteProgram(program);
     return false;
   }

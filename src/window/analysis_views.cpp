@@ -39,7 +39,8 @@ double current_time_step_limit(const scene& the_scene) {
 // a white dot marks the cells that the theory (stability.hpp) predicts unstable.
 void show_stability_map(scene& the_scene) {
   stability_map& map = the_scene.stability_explorer;
-  if (ImGui::Button(map.running() ? "Restart the map" : "Map dt x K around the current values")) {
+  if (ImGui::Button(map.running() ? ui_label("Restart the map")
+                                  : ui_label("Map dt x K around the current values"))) {
     map.start(the_scene.stage(), the_scene.spring_stage.parameters,
               the_scene.chain_stage.parameters, the_scene.cloth_stage.parameters,
               current_time_step_limit(the_scene));
@@ -47,7 +48,7 @@ void show_stability_map(scene& the_scene) {
   log_widget("Map dt x K");
   if (map.running()) {
     ImGui::SameLine();
-    if (ImGui::Button("Stop"))
+    if (ImGui::Button(ui_label("Stop")))
       map.cancel();
   }
   if (map.started())  // stays when done, so that the map below does not move
@@ -63,6 +64,7 @@ void show_stability_map(scene& the_scene) {
         std::count_if(cells.begin(), cells.end(), [](const sweep_cell& c) { return c.computed; });
     const auto diverged =
         std::count_if(cells.begin(), cells.end(), [](const sweep_cell& c) { return c.diverged; });
+    // (not translated: the window's log, read by the tests)
     std::printf("clothlab-window: stability map (%s, %s): %ld of %zu cells run, %ld diverged\n",
                 std::string(stage_name(map.stage())).c_str(),
                 std::string(integrator_name(cells.front().integrator)).c_str(),
@@ -71,7 +73,7 @@ void show_stability_map(scene& the_scene) {
   }
   // Axes: K (N/m) of every other row on the left, dt (s) of every third column below.
   const float text_height = ImGui::GetTextLineHeight();
-  float label_width = ImGui::CalcTextSize("K (N/m)").x;
+  float label_width = ImGui::CalcTextSize(tr("K (N/m)")).x;
   for (int row = 0; row < stability_map::rows; row += 2) {
     const std::string label = tick_label(cells[row * stability_map::columns].stiffness);
     label_width = std::max(label_width, ImGui::CalcTextSize(label.c_str()).x);
@@ -83,7 +85,7 @@ void show_stability_map(scene& the_scene) {
       (ImGui::GetContentRegionAvail().x - label_width - 6.0f) / stability_map::columns;
   ImDrawList& draw = *ImGui::GetWindowDrawList();
   const ImU32 text_colour = ImGui::GetColorU32(ImGuiCol_TextDisabled);
-  draw.AddText(corner, text_colour, "K (N/m)");
+  draw.AddText(corner, text_colour, tr("K (N/m)"));
   for (int row = 0; row < stability_map::rows; row += 2) {
     const std::string label = tick_label(cells[row * stability_map::columns].stiffness);
     const float y =
@@ -92,7 +94,7 @@ void show_stability_map(scene& the_scene) {
                  text_colour, label.c_str());
   }
   const float bottom = origin.y + stability_map::rows * cell_height;
-  draw.AddText({corner.x, bottom + 2.0f}, text_colour, "dt (s)");
+  draw.AddText({corner.x, bottom + 2.0f}, text_colour, tr("dt (s)"));
   for (int column = 0; column < stability_map::columns; column += 3) {
     const std::string label = tick_label(cells[column].time_step);
     const float half = ImGui::CalcTextSize(label.c_str()).x / 2;
@@ -128,21 +130,22 @@ void show_stability_map(scene& the_scene) {
   // Implicit Euler and XPBD have no limit: their map is centred on the current dt.
   const bool limited = std::isfinite(cells[cells.size() / 2].time_step_limit);
   ImGui::TextDisabled(
-      "%s: dt across (x %.3g per cell, centred on %s), K up (x 10^1/4), the outlined cell is "
-      "now; green stable, red diverged, dot: unstable in theory",
-      integrator.c_str(), map.column_factor(),
-      limited ? "the limit of the current K" : "the current dt: no limit");
+      tr("%s: dt across (x %.3g per cell, centred on %s), K up (x 10^1/4), the outlined cell is "
+         "now; green stable, red diverged, dot: unstable in theory"),
+      tr(integrator.c_str()), map.column_factor(),
+      limited ? tr("the limit of the current K") : tr("the current dt: no limit"));
   ImGui::PopTextWrapPos();
   if (hovered != nullptr) {
     ImGui::BeginTooltip();
-    ImGui::Text("dt = %.4g s, K = %.4g N/m", hovered->time_step, hovered->stiffness);
+    ImGui::Text(tr("dt = %.4g s, K = %.4g N/m"), hovered->time_step, hovered->stiffness);
     if (std::isfinite(hovered->time_step_limit))
-      ImGui::Text("theory: stable while dt < %.4g s", hovered->time_step_limit);
+      ImGui::Text(tr("theory: stable while dt < %.4g s"), hovered->time_step_limit);
     else
-      ImGui::Text("theory: stable at every dt (%s)", integrator.c_str());
+      ImGui::Text(tr("theory: stable at every dt (%s)"), tr(integrator.c_str()));
     if (hovered->computed) {
-      ImGui::Text(hovered->diverged ? "run: diverged at step %ld" : "run: stable for %ld steps",
-                  hovered->step);
+      ImGui::Text(
+          hovered->diverged ? tr("run: diverged at step %ld") : tr("run: stable for %ld steps"),
+          hovered->step);
     }
     ImGui::EndTooltip();
   }
@@ -154,7 +157,8 @@ void show_stability_map(scene& the_scene) {
 void show_energy(const scene& the_scene) {
   const energy_breakdown& energy = the_scene.energy();
   const double now[4] = {energy.kinetic, energy.gravity, energy.spring, energy.total};
-  constexpr const char* names[4] = {"kinetic", "gravity", "spring", "total"};
+  const char* const names[4] = {tr("kinetic"), tr("gravity"), tr("spring"), tr("total")};
+  constexpr const char* ids[4] = {"kinetic", "gravity", "spring", "total"};  // the plots' ids
   constexpr ImU32 colours[4] = {IM_COL32(110, 190, 255, 255), IM_COL32(150, 220, 140, 255),
                                 IM_COL32(255, 190, 90, 255), IM_COL32(240, 240, 240, 255)};
   const std::vector<float>& times = the_scene.energy_times();
@@ -164,18 +168,18 @@ void show_energy(const scene& the_scene) {
     plot_style style;
     style.height = (i == 3 ? 78.0f : 52.0f) * ui_scale();
     style.x_numbers = i == 3;  // the time axis's numbers under the last one
-    style.x_unit = "t (s)";
+    style.x_unit = tr("t (s)");
     style.y_unit = "J";
     style.title = format("%s %.5g J", names[i], now[i]);
     style.min_label_width = ImGui::CalcTextSize("-0.000").x;
-    line_plot(names[i], {&curve, 1}, style);
+    line_plot(ids[i], {&curve, 1}, style);
   }
 }
 
 // Question 2: the spring's extension along its rest direction, simulated and exact (the 1D
 // damped oscillator, spring_motion.hpp), and their difference.
 void show_spring_motion(scene& the_scene, user_actions& actions) {
-  actions.reset |= ImGui::Checkbox("1D start: v1 along the spring (resets)",
+  actions.reset |= ImGui::Checkbox(ui_label("1D start: v1 along the spring (resets)"),
                                    &the_scene.spring_one_dimensional_start);
   const spring_motion& motion = the_scene.motion();
   const std::vector<float>& times = motion.times();
@@ -190,30 +194,30 @@ void show_spring_motion(scene& the_scene, user_actions& actions) {
     }
   }
   const plot_series extension[] = {
-      {exact_times, exact_values, IM_COL32(240, 240, 240, 255), "exact"},
-      {times, motion.simulated(), IM_COL32(255, 150, 60, 255), "simulated"}};
+      {exact_times, exact_values, IM_COL32(240, 240, 240, 255), tr("exact")},
+      {times, motion.simulated(), IM_COL32(255, 150, 60, 255), tr("simulated")}};
   plot_style style;
   style.height = 96.0f * ui_scale();
-  style.x_unit = "t (s)";
+  style.x_unit = tr("t (s)");
   style.y_unit = "m";
-  style.title = "x (m): simulated (orange), exact (white)";
+  style.title = tr("x (m): simulated (orange), exact (white)");
   line_plot("extension", extension, style);
-  const plot_series error = {times, motion.error(), IM_COL32(255, 90, 80, 255), "error"};
+  const plot_series error = {times, motion.error(), IM_COL32(255, 90, 80, 255), tr("error")};
   style.height = 66.0f * ui_scale();
   style.y_from_zero = true;
-  style.title = "error (m): simulated - exact";
+  style.title = tr("error (m): simulated - exact");
   line_plot("error", {&error, 1}, style);
-  fixed_lines(format("largest |error| %.3g m since t = %.2f s (the reset or the last change of "
-                     "K, mu, m, g0)",
+  fixed_lines(format(tr("largest |error| %.3g m since t = %.2f s (the reset or the last change of "
+                        "K, mu, m, g0)"),
                      motion.largest_error(), motion.start_time()),
               2, text_style::disabled);
   if (the_scene.spring_one_dimensional_start)
-    fixed_lines("1D start: the motion is along the spring, the 1D model's exactly", 2,
+    fixed_lines(tr("1D start: the motion is along the spring, the 1D model's exactly"), 2,
                 text_style::disabled);
   else
     fixed_lines(
-        "x along the rest direction; the mass also swings sideways (v1 is across the "
-        "spring), which the 1D model leaves out: tick 1D start for the integrator alone",
+        tr("x along the rest direction; the mass also swings sideways (v1 is across the "
+           "spring), which the 1D model leaves out: tick 1D start for the integrator alone"),
         2, text_style::disabled);
 }
 
@@ -224,10 +228,10 @@ void show_spring_motion(scene& the_scene, user_actions& actions) {
 void show_frame_anatomy(const scene& the_scene) {
   const frame_anatomy& anatomy = the_scene.last_frame_anatomy();
   const std::array<std::pair<const char*, ImVec4>, 4> parts = {{
-      {"initialisation", {0.55f, 0.75f, 1.0f, 1.0f}},
-      {"force computation", {1.0f, 0.7f, 0.35f, 1.0f}},
-      {"numerical integration", {0.55f, 0.9f, 0.55f, 1.0f}},
-      {"display", {0.85f, 0.7f, 1.0f, 1.0f}},
+      {N_("initialisation"), {0.55f, 0.75f, 1.0f, 1.0f}},
+      {N_("force computation"), {1.0f, 0.7f, 0.35f, 1.0f}},
+      {N_("numerical integration"), {0.55f, 0.9f, 0.55f, 1.0f}},
+      {N_("display"), {0.85f, 0.7f, 1.0f, 1.0f}},
   }};
   const auto colour_of = [&](const std::string& part) {
     for (const auto& [name, colour] : parts) {
@@ -240,21 +244,21 @@ void show_frame_anatomy(const scene& the_scene) {
       return parts[1].second;
     return ImGui::GetStyleColorVec4(ImGuiCol_Text);
   };
-  fixed_lines(format("frame %ld: %s in all. The parts of question 3:", anatomy.frame,
+  fixed_lines(format(tr("frame %ld: %s in all. The parts of question 3:"), anatomy.frame,
                      format_duration(anatomy.frame_seconds).c_str()),
               1, text_style::disabled);
   for (std::size_t i = 0; i < parts.size(); ++i) {
     if (i % 2 == 1)
       ImGui::SameLine();
-    ImGui::TextColored(parts[i].second, i % 2 == 0 ? "  %s," : "%s", parts[i].first);
+    ImGui::TextColored(parts[i].second, i % 2 == 0 ? "  %s," : "%s", tr(parts[i].first));
   }
   const ImGuiTableFlags flags =
       ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV;
   if (!ImGui::BeginTable("frame anatomy", 3, flags))
     return;
-  ImGui::TableSetupColumn("phase", ImGuiTableColumnFlags_WidthFixed, 122.0f * ui_scale());
-  ImGui::TableSetupColumn("function, file", ImGuiTableColumnFlags_WidthStretch);
-  ImGui::TableSetupColumn("time", ImGuiTableColumnFlags_WidthFixed, 58.0f * ui_scale());
+  ImGui::TableSetupColumn(ui_label("phase"), ImGuiTableColumnFlags_WidthFixed, 122.0f * ui_scale());
+  ImGui::TableSetupColumn(ui_label("function, file"), ImGuiTableColumnFlags_WidthStretch);
+  ImGui::TableSetupColumn(ui_label("time"), ImGuiTableColumnFlags_WidthFixed, 58.0f * ui_scale());
   for (const anatomy_row& row : anatomy_rows(anatomy)) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
@@ -265,7 +269,7 @@ void show_frame_anatomy(const scene& the_scene) {
     if (row.phase == "compute_force")
       log_widget("frame anatomy: compute_force");
     if (!row.question3.empty() && ImGui::IsItemHovered())
-      ImGui::SetTooltip("question 3: %s", row.question3.c_str());
+      ImGui::SetTooltip(tr("question 3: %s"), tr(row.question3.c_str()));
     ImGui::TableNextColumn();
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextDisabled("%s", row.where.c_str());
@@ -277,10 +281,9 @@ void show_frame_anatomy(const scene& the_scene) {
       ImGui::TextDisabled("-");
   }
   ImGui::EndTable();
-  fixed_lines(
-      "The last whole frame, timed by std::chrono around each call (scene.cpp, "
-      "window_main.cpp). The GPU draws what the renderer asked at the swap.",
-      4, text_style::disabled);
+  fixed_lines(tr("The last whole frame, timed by std::chrono around each call (scene.cpp, "
+                 "window_main.cpp). The GPU draws what the renderer asked at the swap."),
+              4, text_style::disabled);
 }
 
 }  // namespace clothlab

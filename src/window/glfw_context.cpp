@@ -5,6 +5,7 @@
 
 #include "gl/gl.hpp"  // GLEW, which must come before GLFW
 
+#include "core/i18n.hpp"
 #include "gl/glfw_errors.hpp"  // GLFW
 
 namespace clothlab {
@@ -13,8 +14,9 @@ std::unique_ptr<glfw_context> glfw_context::create(const std::string& title, int
                                                    std::string& error) {
   keep_glfw_errors();
   if (glfwInit() != GLFW_TRUE) {
-    error = "cannot open a window: " + last_glfw_error() +
-            ". Is a display available? Run it under `xvfb-run -a`, or use `clothlab --headless`.";
+    error = format(tr("cannot open a window: %s. Is a display available? Run it under "
+                      "`xvfb-run -a`, or use `clothlab --headless`."),
+                   last_glfw_error().c_str());
     return nullptr;
   }
 #if defined(CLOTHLAB_GL_WEB)
@@ -22,17 +24,17 @@ std::unique_ptr<glfw_context> glfw_context::create(const std::string& title, int
   glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
-  const char* wanted = "a WebGL2 context";
+  const char* wanted = tr("cannot create a WebGL2 context: %s");
 #else
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  const char* wanted = "a window with an OpenGL 3.3 core context";
+  const char* wanted = tr("cannot create a window with an OpenGL 3.3 core context: %s");
 #endif
   GLFWwindow* window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (window == nullptr) {
-    error = std::string("cannot create ") + wanted + ": " + last_glfw_error();
+    error = format(wanted, last_glfw_error().c_str());
     glfwTerminate();
     return nullptr;
   }
@@ -40,7 +42,7 @@ std::unique_ptr<glfw_context> glfw_context::create(const std::string& title, int
 #if !defined(CLOTHLAB_GL_WEB)  // (the browser's GL functions need no loading)
   glewExperimental = GL_TRUE;
   if (const GLenum status = glewInit(); status != GLEW_OK) {
-    error = std::string("GLEW cannot load the OpenGL functions: ") +
+    error = std::string(tr("GLEW cannot load the OpenGL functions:")) + " " +
             reinterpret_cast<const char*>(glewGetErrorString(status));
     glfwDestroyWindow(window);
     glfwTerminate();

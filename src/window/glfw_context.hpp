@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/i18n.hpp"
 #include "gl/gl_context.hpp"
 
 struct GLFWwindow;
@@ -36,11 +37,11 @@ class glfw_context final : public gl_context {
   int framebuffer_height() const override;
 #if defined(CLOTHLAB_GL_WEB)
   std::string origin() const override {
-    return "in the page's WebGL2 canvas";
+    return tr("in the page's WebGL2 canvas");
   }
 #else
   std::string origin() const override {
-    return "in a GLFW window";
+    return tr("in a GLFW window");
   }
 #endif
 

@@ -32,13 +32,13 @@ void show_state_textures(scene& the_scene) {
   the_scene.panel_needs_state = true;
   const state_images& images = the_scene.state_textures();
   fixed_lines(the_scene.state_textures_from_gpu()
-                  ? "GPU path: its state textures, read back"
-                  : "CPU path: its arrays, laid out as the GPU textures",
+                  ? tr("GPU path: its state textures, read back")
+                  : tr("CPU path: its arrays, laid out as the GPU textures"),
               1);
   constexpr std::array<std::pair<state_images::which, const char*>, 3> shown = {{
-      {state_images::position, "position"},
-      {state_images::velocity, "velocity"},
-      {state_images::normal, "normal"},
+      {state_images::position, N_("position")},
+      {state_images::velocity, N_("velocity")},
+      {state_images::normal, N_("normal")},
   }};
   const float spacing = ImGui::GetStyle().ItemSpacing.x;
   const float side = std::floor((ImGui::GetContentRegionAvail().x - 2 * spacing) / 3);
@@ -46,7 +46,7 @@ void show_state_textures(scene& the_scene) {
     if (image != state_images::position)
       ImGui::SameLine();
     ImGui::BeginGroup();
-    ImGui::TextUnformatted(name);
+    ImGui::TextUnformatted(tr(name));
     const ImVec2 top_left = ImGui::GetCursorScreenPos();
     // Texel row kv = 0 at the top, as in the texture's memory.
     ImGui::Image(imgui_texture(images.texture(image)), {side, side});
@@ -59,28 +59,30 @@ void show_state_textures(scene& the_scene) {
           static_cast<int>((mouse.y - top_left.y) / side * static_cast<float>(n)), 0, n - 1);
       const std::array<double, 3> value = images.texel(image, ku, kv);
       ImGui::BeginTooltip();
-      ImGui::Text("texel (%d, %d) = particle %d", ku, kv, ku + n * kv);
-      ImGui::Text("%s = (%.4g, %.4g, %.4g)", name, value[0], value[1], value[2]);
+      ImGui::Text(tr("texel (%d, %d) = particle %d"), ku, kv, ku + n * kv);
+      ImGui::Text("%s = (%.4g, %.4g, %.4g)", tr(name), value[0], value[1], value[2]);
       ImGui::EndTooltip();
     }
     ImGui::EndGroup();
   }
   for (const auto& [image, name] : shown)
-    fixed_lines(std::string(name) + ": " + images.legend(image), 2, text_style::disabled);
+    fixed_lines(format(tr("%s: %s"), tr(name), images.legend(image).c_str()), 2,
+                text_style::disabled);
 }
 
 // Question 12: which OpenGL renderer draws and runs the GPU path.
 void show_renderer(const scene& the_scene) {
   const std::string& name = the_scene.renderer_name();
-  fixed_lines("OpenGL renderer: " + name, 1, text_style::disabled);
+  fixed_lines(format(tr("OpenGL renderer: %s"), name.c_str()), 1, text_style::disabled);
   const bool software = name.find("llvmpipe") != std::string::npos ||
                         name.find("softpipe") != std::string::npos ||
                         name.find("SWR") != std::string::npos;
   if (software)
-    fixed_lines(name.substr(0, name.find(' ')) + ": software, the GPU is the CPU here", 1,
-                text_style::coloured, caution_yellow);
+    fixed_lines(
+        format(tr("%s: software, the GPU is the CPU here"), name.substr(0, name.find(' ')).c_str()),
+        1, text_style::coloured, caution_yellow);
   else
-    fixed_lines("a hardware GPU", 1, text_style::disabled);
+    fixed_lines(tr("a hardware GPU"), 1, text_style::disabled);
 }
 
 }  // namespace
@@ -89,9 +91,9 @@ void show_renderer(const scene& the_scene) {
 void show_gpu_path(scene& the_scene, user_actions& actions) {
   const cloth_backend backend = the_scene.backend();
   constexpr std::array<std::pair<cloth_backend, const char*>, 3> paths = {{
-      {cloth_backend::cpu, "CPU (double)"},
-      {cloth_backend::gpu, "GPU fragment"},
-      {cloth_backend::gpu_compute, "GPU compute"},
+      {cloth_backend::cpu, N_("CPU (double)")},
+      {cloth_backend::gpu, N_("GPU fragment")},
+      {cloth_backend::gpu_compute, N_("GPU compute")},
   }};
   std::string compute_why;
   const bool compute = the_scene.compute_offered(compute_why);
@@ -107,7 +109,7 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
     const bool greyed = (path == cloth_backend::gpu_compute && !compute) ||
                         (path == cloth_backend::gpu && !fragment_runs_integrator);
     ImGui::BeginDisabled(greyed);
-    if (ImGui::RadioButton(label, backend == path) && backend != path)
+    if (ImGui::RadioButton(ui_label(label), backend == path) && backend != path)
       actions.select_cloth_backend = path;
     ImGui::EndDisabled();
     if (greyed && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
@@ -116,21 +118,21 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
   }
   // Fixed lines: a hint, a measurement or a refusal appearing moves nothing below.
   if (std::string why; !the_scene.gpu_can_run(cloth_backend::gpu, why))
-    fixed_lines("Not on the GPU: " + why, 2, text_style::coloured, caution_yellow);
+    fixed_lines(format(tr("Not on the GPU: %s"), why.c_str()), 2, text_style::coloured,
+                caution_yellow);
   else if (!compute)
-    fixed_lines("GPU compute greyed: " + compute_why, 2, text_style::disabled);
+    fixed_lines(format(tr("GPU compute greyed: %s"), compute_why.c_str()), 2, text_style::disabled);
   else
-    fixed_lines(
-        "fragment: the handout's path (textures); compute: OpenGL 4.3 compute shaders "
-        "over buffers",
-        2, text_style::disabled);
+    fixed_lines(tr("fragment: the handout's path (textures); compute: OpenGL 4.3 compute shaders "
+                   "over buffers"),
+                2, text_style::disabled);
 
-  ImGui::Text("live: %s, %.0f steps/s (stepping alone)", backend_name(the_scene.backend()),
+  ImGui::Text(tr("live: %s, %.0f steps/s (stepping alone)"), tr(backend_name(the_scene.backend())),
               the_scene.stepping_rate());
   show_renderer(the_scene);
   const std::string measure_label =
-      "Measure all (M): " + std::to_string(steps_per_backend_measurement) +
-      " steps each, on copies";
+      format(tr("Measure all (M): %d steps each, on copies"), steps_per_backend_measurement) +
+      "###measure all";
   if (ImGui::Button(measure_label.c_str()))
     actions.measure_backends = true;
   const backend_comparison& comparison = the_scene.comparison();
@@ -138,10 +140,11 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
     return steps_per_second > 0.0 ? format("%.0f", steps_per_second) : std::string("-");
   };
   if (!comparison.measured) {
-    fixed_lines("N = -  steps/s: CPU -  GPU -  compute -  (not measured)", 1, text_style::disabled);
+    fixed_lines(tr("N = -  steps/s: CPU -  GPU -  compute -  (not measured)"), 1,
+                text_style::disabled);
     fixed_lines("", 1);
   } else {
-    fixed_lines(format("N = %d  steps/s: CPU %s  GPU %s  compute %s", comparison.grid_size,
+    fixed_lines(format(tr("N = %d  steps/s: CPU %s  GPU %s  compute %s"), comparison.grid_size,
                        rate(comparison.cpu_steps_per_second).c_str(),
                        rate(comparison.gpu_steps_per_second).c_str(),
                        rate(comparison.compute_steps_per_second).c_str()),
@@ -150,25 +153,25 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
     if (comparison.gpu_steps_per_second <= 0.0)
       fixed_lines(comparison.gpu_error, 1, text_style::coloured, warning_red);
     else if (comparison.grid_size != the_scene.cloth_stage.grid_size())
-      fixed_lines("measured for another N: measure again", 1, text_style::disabled);
+      fixed_lines(tr("measured for another N: measure again"), 1, text_style::disabled);
     else if (comparison.compute_steps_per_second > 0.0)
       fixed_lines(
-          format("GPU/CPU = %.2f x   compute/CPU = %.2f x", comparison.gpu_steps_per_second / cpu,
-                 comparison.compute_steps_per_second / cpu),
+          format(tr("GPU/CPU = %.2f x   compute/CPU = %.2f x"),
+                 comparison.gpu_steps_per_second / cpu, comparison.compute_steps_per_second / cpu),
           1);
     else
-      fixed_lines(format("GPU/CPU = %.2f x   compute: %s", comparison.gpu_steps_per_second / cpu,
-                         comparison.compute_error.c_str()),
+      fixed_lines(format(tr("GPU/CPU = %.2f x   compute: %s"),
+                         comparison.gpu_steps_per_second / cpu, comparison.compute_error.c_str()),
                   1);
   }
-  fixed_lines(format("read-backs of the GPU state so far: %ld (only for this panel's images and "
-                     "the energy plot, at most %.0f/s)",
+  fixed_lines(format(tr("read-backs of the GPU state so far: %ld (only for this panel's images and "
+                        "the energy plot, at most %.0f/s)"),
                      the_scene.readbacks(), scene::max_readbacks_per_second),
               2, text_style::disabled);
   show_state_textures(the_scene);
   ImGui::PushTextWrapPos(0.0f);
   // BEGIN TEACHER: the answer to question 11, which the student copy leaves to the student
-  ImGui::TextDisabled(
+  ImGui::TextDisabled(tr(
       "Q11: every particle is one texel of N x N float (RGBA32F) textures: positions (w: "
       "pinned) and velocities, two copies each that swap after every step (ping-pong), and the "
       "normals. The simulation runs in fragment shaders: a triangle covering an N x N viewport "
@@ -176,7 +179,7 @@ void show_gpu_path(scene& the_scene, user_actions& actions) {
       "applies the ground and writes the new state into the other copy; a second pass writes the "
       "normals. The CPU sends a flat N x N grid once; the vertex shader fetches each vertex's "
       "position and normal from the textures. The divergence check runs on the GPU; the state "
-      "comes back to the CPU only for these images and the energy plot.");
+      "comes back to the CPU only for these images and the energy plot."));
   // END TEACHER
   ImGui::PopTextWrapPos();
 }

@@ -1,12 +1,19 @@
-// What the window tests (tests/window) read of the panel's layout, printed only when the
-// environment sets CLOTHLAB_PRINT_LAYOUT=1: where the dt slider is whenever it or the run's state
-// changes (no status message may move a slider), and where each named widget is (the tests click
-// it there). Without the variable nothing is printed and nothing is measured.
+// What the window tests (tests/window) read of the window: its log (what the mouse did, the
+// presets, the frames measured), and the panel's layout, printed only when the environment sets
+// CLOTHLAB_PRINT_LAYOUT=1: where the dt slider is whenever it or the run's state changes (no
+// status message may move a slider), and where each named widget is (the tests click it there,
+// by the English name given here, whatever the panel's language). Without the variable no layout
+// is printed and nothing is measured.
 #pragma once
 
 #include "window/scene.hpp"
 
 namespace clothlab {
+
+// One line of the window's log on standard output, "clothlab-window: ..." (docs/window.md). In
+// English whatever the panel's language, like the numbers it carries: programs read it. What the
+// user is told goes through tr() instead.
+[[gnu::format(printf, 1, 2)]] void window_log(const char* format, ...);
 
 // The last ImGui item is the dt slider of the stage shown: its top is remembered for log_layout.
 void note_time_step_slider();

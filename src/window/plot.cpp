@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 
 void line_plot(const char* id, std::span<const plot_series> series, const plot_style& style) {
@@ -35,7 +37,7 @@ void line_plot(const char* id, std::span<const plot_series> series, const plot_s
   const ImU32 frame_colour = IM_COL32(110, 110, 120, 255);
   const ImU32 text_colour = ImGui::GetColorU32(ImGuiCol_TextDisabled);
   if (!std::isfinite(x_low) || !std::isfinite(y_low)) {
-    draw.AddText({origin.x + 4.0f, origin.y + 2.0f}, text_colour, "no data yet");
+    draw.AddText({origin.x + 4.0f, origin.y + 2.0f}, text_colour, tr("no data yet"));
     ImGui::PopID();
     return;
   }

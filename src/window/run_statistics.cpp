@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 
 void rate_meter::restart() {
@@ -72,9 +74,10 @@ void tear_report::check(const spring_mesh& cloth, long step, double time) {
     return;
   reported_ = true;
   std::printf(
-      "clothlab-window: the cloth began to tear by step %ld (t = %.3f s): %zu of %zu "
-      "springs left\n",
-      step, time, springs, whole);
+      tr("clothlab-window: %s\n"),
+      format(tr("the cloth began to tear by step %ld (t = %.3f s): %zu of %zu springs left"), step,
+             time, springs, whole)
+          .c_str());
   std::fflush(stdout);
 }
 

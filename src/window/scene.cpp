@@ -9,12 +9,26 @@
 #include <limits>
 #include <utility>
 
+#include "core/i18n.hpp"
 #include "core/stability.hpp"
 #include "core/wall_clock.hpp"
 #include "gl/gl.hpp"
 #include "window/framing.hpp"  // chain_view
 
 namespace clothlab {
+
+// The stage as the window's messages name it ("the cloth stage diverged at step ...").
+const char* stage_in_words(stage_kind stage) {
+  switch (stage) {
+    case stage_kind::spring:
+      return tr("the spring stage");
+    case stage_kind::coupled:
+      return tr("the coupled stage");
+    case stage_kind::cloth:
+      break;
+  }
+  return tr("the cloth stage");
+}
 
 namespace {
 
@@ -228,8 +242,9 @@ void scene::simulate(int steps, double wall_clock_budget) {
         read_gpu_state();  // the state at the end of the batch, to say what went wrong
         divergence_status check = divergence_check(cloth_stage);
         if (!check.diverged)
-          check = {true, "a particle not finite or faster than " +
-                             std::to_string(paths_.speed_bound()) + " m/s (checked on the GPU)"};
+          check = {true, format(tr("a particle not finite or faster than %g m/s (checked on the "
+                                   "GPU)"),
+                                paths_.speed_bound())};
         report_divergence(std::move(check));
         break;
       }
@@ -308,6 +323,7 @@ void scene::count_grab_stillness(double time_step) {
   const double before = grab_still_seconds_;
   grab_still_seconds_ += time_step;
   if (std::floor(grab_still_seconds_) > std::floor(before)) {
+    // (not translated: read by the window tests)
     std::printf("clothlab-window: the grab's target has been still for %.0f s of simulated time\n",
                 std::floor(grab_still_seconds_));
     std::fflush(stdout);
@@ -322,13 +338,14 @@ void scene::report_divergence(divergence_status check) {
     // Where dt stood against the stability limit (question 4), with the parameters that diverged.
     const stability_estimate estimate =
         with_current_stage([](const auto& stage) { return estimate_stability(stage); });
-    char advice[64];
-    std::snprintf(advice, sizeof advice,
-                  "dt omega_max = %.3g: ", current_time_step() * estimate.omega_max);
-    status.divergence_advice = advice + estimate.explanation;
-    std::printf("clothlab-window: the %s stage diverged at step %ld (t = %g s): %s; %s\n",
-                std::string(stage_name(stage_)).c_str(), status.step, status.time,
-                status.divergence_reason.c_str(), status.divergence_advice.c_str());
+    status.divergence_advice =
+        format(tr("dt omega_max = %.3g: %s"), current_time_step() * estimate.omega_max,
+               estimate.explanation.c_str());
+    std::printf(tr("clothlab-window: %s\n"),
+                format(tr("%s diverged at step %ld (t = %g s): %s; %s"), stage_in_words(stage_),
+                       status.step, status.time, status.divergence_reason.c_str(),
+                       status.divergence_advice.c_str())
+                    .c_str());
     std::fflush(stdout);
   }
 }
@@ -403,8 +420,9 @@ void scene::check_in_view() {
     return fell_below_view(view, aspect, stage.particles().position);
   });
   if (fell_out_of_view_ && !was_out) {
-    std::printf("clothlab-window: the %s stage fell out of view at t = %.2f s\n",
-                std::string(stage_name(stage_)).c_str(), status().time);
+    std::printf(tr("clothlab-window: %s\n"), format(tr("%s fell out of view at t = %.2f s"),
+                                                    stage_in_words(stage_), status().time)
+                                                 .c_str());
     std::fflush(stdout);
   }
 }

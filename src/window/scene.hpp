@@ -35,6 +35,9 @@
 
 namespace clothlab {
 
+// The stage in the user's words, for the messages: "the single spring", "the chain", "the cloth".
+const char* stage_in_words(stage_kind stage);
+
 // How many steps a drawn frame advances.
 enum class time_mode {
   steps_per_frame,  // a fixed number of steps per frame: simulated time runs at the frame rate

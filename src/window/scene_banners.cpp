@@ -25,11 +25,12 @@ bool begin_scene_banner(const char* name, float panel_covered_width) {
 void show_divergence_banner(const run_status& status, float panel_covered_width) {
   if (begin_scene_banner("diverged", panel_covered_width)) {
     ImGui::SetWindowFontScale(1.5f);
-    ImGui::TextColored(warning_red, "diverged at step %ld (t = %.3f s)", status.step, status.time);
+    ImGui::TextColored(warning_red, tr("diverged at step %ld (t = %.3f s)"), status.step,
+                       status.time);
     ImGui::SetWindowFontScale(1.0f);
     // (broken at spaces: a number is never cut)
     fixed_lines(status.divergence_advice, 4, text_style::plain, {}, ImGui::GetFontSize() * 30.0f);
-    ImGui::TextUnformatted("reduce dt or K, or add damping; R resets the stage");
+    ImGui::TextUnformatted(tr("reduce dt or K, or add damping; R resets the stage"));
   }
   ImGui::End();
 }
@@ -40,21 +41,22 @@ void show_divergence_banner(const run_status& status, float panel_covered_width)
 void show_out_of_view_banner(stage_kind stage, float panel_covered_width) {
   if (begin_scene_banner("out of view", panel_covered_width)) {
     ImGui::SetWindowFontScale(1.5f);
-    ImGui::TextColored(caution_yellow, stage == stage_kind::cloth ? "The cloth fell out of view"
-                                                                  : "The masses fell out of view");
+    ImGui::TextColored(caution_yellow, "%s",
+                       stage == stage_kind::cloth ? tr("The cloth fell out of view")
+                                                  : tr("The masses fell out of view"));
     ImGui::SetWindowFontScale(1.0f);
     const float width = ImGui::GetFontSize() * 30.0f;
     if (stage == stage_kind::cloth) {
       fixed_lines(
-          "Nothing holds it up: it falls freely under gravity. A cloth is held up by questions "
-          "6 to 9, written and switched on: apply_force (6), the pins (7), the springs (8) and "
-          "the ground (9), in spring_mesh.cpp.",
+          tr("Nothing holds it up: it falls freely under gravity. A cloth is held up by questions "
+             "6 to 9, written and switched on: apply_force (6), the pins (7), the springs (8) and "
+             "the ground (9), in spring_mesh.cpp."),
           4, text_style::plain, {}, width);
     } else {
-      fixed_lines("Nothing holds them up: the springs (question 5 for the chain) do.", 2,
+      fixed_lines(tr("Nothing holds them up: the springs (question 5 for the chain) do."), 2,
                   text_style::plain, {}, width);
     }
-    ImGui::TextUnformatted("R resets the stage, V resets the view.");
+    ImGui::TextUnformatted(tr("R resets the stage, V resets the view."));
   }
   ImGui::End();
 }

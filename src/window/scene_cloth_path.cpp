@@ -1,6 +1,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/i18n.hpp"
 #include "window/scene.hpp"
 
 namespace clothlab {
@@ -54,8 +55,9 @@ void scene::switch_cloth_backend(cloth_backend target) {
   const long step = status_[static_cast<int>(stage_kind::cloth)].step;
   std::string why;
   if (on_gpu(target) && !gpu_can_run(target, why)) {
-    backend_message_ = std::string("The cloth stays on the ") + backend_name(from) + ": " + why;
-    std::printf("clothlab-window: %s\n", backend_message_.c_str());
+    backend_message_ =
+        format(tr("The cloth stays on the %s: %s"), tr(backend_name(from)), why.c_str());
+    std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
     std::fflush(stdout);
     return;
   }
@@ -63,15 +65,15 @@ void scene::switch_cloth_backend(cloth_backend target) {
   // read back from the GPU path it is on, if any.
   read_gpu_state();
   if (!paths_.load(target, why)) {  // the cloth is then on the CPU path
-    backend_message_ = "The cloth went to the CPU: " + why;
-    std::printf("clothlab-window: %s\n", backend_message_.c_str());
+    backend_message_ = format(tr("The cloth went to the CPU: %s"), why.c_str());
+    std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
     std::fflush(stdout);
     return;
   }
   rates_.restart();  // the stepping rate shown is the new path's
-  backend_message_ = std::string("cloth: ") + backend_name(from) + " -> " + backend_name(target) +
-                     " at step " + std::to_string(step);
-  std::printf("clothlab-window: %s\n", backend_message_.c_str());
+  backend_message_ = format(tr("cloth: %s -> %s at step %ld"), tr(backend_name(from)),
+                            tr(backend_name(target)), step);
+  std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
   std::fflush(stdout);
 }
 
@@ -105,10 +107,9 @@ void scene::fall_back_to_cpu(const std::string& reason) {
   read_gpu_state();
   std::string none;
   paths_.load(cloth_backend::cpu, none);  // loads nothing: the CPU cloth holds the state now
-  backend_message_ = std::string("cloth: ") + backend_name(from) + " -> CPU at step " +
-                     std::to_string(status_[static_cast<int>(stage_kind::cloth)].step) + ": " +
-                     reason;
-  std::printf("clothlab-window: %s\n", backend_message_.c_str());
+  backend_message_ = format(tr("cloth: %s -> CPU at step %ld: %s"), tr(backend_name(from)),
+                            status_[static_cast<int>(stage_kind::cloth)].step, reason.c_str());
+  std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
   std::fflush(stdout);
 }
 
@@ -120,8 +121,8 @@ void scene::reload_gpu_cloth() {
   if (!load_gpu_path(backend(), why)) {
     std::string none;
     paths_.load(cloth_backend::cpu, none);  // the cloth goes on from its new state on the CPU
-    backend_message_ = "The cloth went back to the CPU: " + why;
-    std::printf("clothlab-window: %s\n", backend_message_.c_str());
+    backend_message_ = format(tr("The cloth went back to the CPU: %s"), why.c_str());
+    std::printf(tr("clothlab-window: %s\n"), backend_message_.c_str());
     std::fflush(stdout);
   }
 }
@@ -133,8 +134,8 @@ void scene::measure_backends(int steps) {
   const std::string& why = comparison_.gpu_error;
   const std::string& compute_why = comparison_.compute_error;
   std::printf(
-      "clothlab-window: N = %d, %d steps: CPU %.0f steps/s, GPU %.0f steps/s%s%s, GPU compute "
-      "%.0f steps/s%s%s\n",
+      tr("clothlab-window: N = %d, %d steps: CPU %.0f steps/s, GPU %.0f steps/s%s%s, GPU compute "
+         "%.0f steps/s%s%s\n"),
       comparison_.grid_size, steps, comparison_.cpu_steps_per_second,
       comparison_.gpu_steps_per_second, why.empty() ? "" : ": ", why.c_str(),
       comparison_.compute_steps_per_second, compute_why.empty() ? "" : ": ", compute_why.c_str());

@@ -6,7 +6,9 @@
 #include <string>
 #include <utility>
 
-#include "gl/render_geometry.hpp"     // chain_mass_radius, drawn_mass_radius
+#include "core/i18n.hpp"
+#include "gl/render_geometry.hpp"  // chain_mass_radius, drawn_mass_radius
+#include "window/layout_probe.hpp"
 #include "window/run_statistics.hpp"  // intact_spring_count
 #include "window/scene.hpp"
 
@@ -75,8 +77,10 @@ bool scene::grab_particle(const pick_ray& ray, double max_angle) {
       return false;
     const std::string stage = std::string(stage_name(stage_));
     if (particles.is_fixed[*picked]) {
-      std::printf("clothlab-window: p%zu of the %s stage is fixed: it cannot be dragged\n", *picked,
-                  stage.c_str());
+      std::printf(
+          tr("clothlab-window: %s\n"),
+          format(tr("p%zu of %s is fixed: it cannot be dragged"), *picked, stage_in_words(stage_))
+              .c_str());
       std::fflush(stdout);
       return false;
     }
@@ -85,9 +89,8 @@ bool scene::grab_particle(const pick_ray& ray, double max_angle) {
     drag->mass = static_cast<int>(*picked);
     drag->target = position;
     grab_plane_point_ = position;
-    std::printf("clothlab-window: grabbed mass %zu of the %s stage at (%.3f, %.3f, %.3f)\n",
-                *picked, stage.c_str(), position.x, position.y, position.z);
-    std::fflush(stdout);
+    window_log("grabbed mass %zu of the %s stage at (%.3f, %.3f, %.3f)", *picked, stage.c_str(),
+               position.x, position.y, position.z);
     return true;
   }
   if (cloth_on_gpu())
@@ -100,7 +103,8 @@ bool scene::grab_particle(const pick_ray& ray, double max_angle) {
   const int kv = static_cast<int>(*picked / static_cast<std::size_t>(n));
   const glm::dvec3 position = cloth_stage.particles().get_position(*picked);
   if (cloth_stage.particles().is_fixed[*picked]) {
-    std::printf("clothlab-window: particle (%d, %d) is pinned: it cannot be dragged\n", ku, kv);
+    std::printf(tr("clothlab-window: %s\n"),
+                format(tr("particle (%d, %d) is pinned: it cannot be dragged"), ku, kv).c_str());
     std::fflush(stdout);
     return false;
   }
@@ -110,9 +114,8 @@ bool scene::grab_particle(const pick_ray& ray, double max_angle) {
   drag.kv = kv;
   drag.target = position;
   grab_plane_point_ = position;
-  std::printf("clothlab-window: grabbed particle (%d, %d) at (%.3f, %.3f, %.3f)\n", ku, kv,
-              position.x, position.y, position.z);
-  std::fflush(stdout);
+  window_log("grabbed particle (%d, %d) at (%.3f, %.3f, %.3f)", ku, kv, position.x, position.y,
+             position.z);
   return true;
 }
 
@@ -132,24 +135,20 @@ void scene::release_grab() {
   const glm::dvec3 position = grabbed_position();
   if (mass_drag_parameters* drag = mass_drag()) {
     drag->enabled = false;
-    std::printf(
-        "clothlab-window: released mass %d of the %s stage at (%.3f, %.3f, %.3f), target (%.3f, "
-        "%.3f, %.3f)\n",
-        drag->mass, std::string(stage_name(stage_)).c_str(), position.x, position.y, position.z,
-        drag->target.x, drag->target.y, drag->target.z);
-    std::fflush(stdout);
+    window_log("released mass %d of the %s stage at (%.3f, %.3f, %.3f), target (%.3f, %.3f, %.3f)",
+               drag->mass, std::string(stage_name(stage_)).c_str(), position.x, position.y,
+               position.z, drag->target.x, drag->target.y, drag->target.z);
     return;
   }
   drag_parameters& drag = cloth_stage.parameters.drag;
   drag.enabled = false;
   const std::size_t springs =
       intact_spring_count(cloth_stage);  // fewer than at the start when it tore
-  std::printf(
-      "clothlab-window: released particle (%d, %d) at (%.3f, %.3f, %.3f), target (%.3f, %.3f, "
-      "%.3f), %zu springs\n",
+  window_log(
+      "released particle (%d, %d) at (%.3f, %.3f, %.3f), target (%.3f, %.3f, %.3f), %zu "
+      "springs",
       drag.ku, drag.kv, position.x, position.y, position.z, drag.target.x, drag.target.y,
       drag.target.z, springs);
-  std::fflush(stdout);
 }
 
 glm::dvec3 scene::grabbed_position() {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/i18n.hpp"
+
 namespace clothlab {
 namespace {
 
@@ -65,17 +67,17 @@ void state_images::update(int grid_size, std::span<const double> positions,
       }
       pixels_[4 * k + 3] = 255;
     }
-    char legend[160];
+    char legend[256];
     if (image == position) {
       std::snprintf(legend, sizeof legend,
-                    "rgb = xyz, each from its min to its max: x %.3g to %.3g, "
-                    "y %.3g to %.3g, z %.3g to %.3g m",
+                    tr("rgb = xyz, each from its min to its max: x %.3g to %.3g, "
+                       "y %.3g to %.3g, z %.3g to %.3g m"),
                     low[0], high[0], low[1], high[1], low[2], high[2]);
     } else if (image == velocity) {
-      std::snprintf(legend, sizeof legend, "rgb = 0.5 + v / (2 |v|max), |v|max = %.3g m/s",
+      std::snprintf(legend, sizeof legend, tr("rgb = 0.5 + v / (2 |v|max), |v|max = %.3g m/s"),
                     largest_speed);
     } else {
-      std::snprintf(legend, sizeof legend, "rgb = 0.5 + n / 2 (flat, up: lilac)");
+      std::snprintf(legend, sizeof legend, "%s", tr("rgb = 0.5 + n / 2 (flat, up: lilac)"));
     }
     legends_[image] = legend;
     // Row kv of the image is particle row kv: texel (ku, kv) as on the GPU.

@@ -21,6 +21,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app/options.hpp"
+#include "core/i18n.hpp"
 #include "core/spring_mesh.hpp"
 #include "gl/renderer.hpp"
 #include "window/glfw_context.hpp"
@@ -38,28 +39,58 @@ struct web_page {
 web_page page;
 
 // clang-format off
-// What the page shows under the canvas and what the browser test reads (window.clothlab.status):
-// the stage, the cloth's path and size, the simulated time, the steps and their rate, the frame
-// rate.
+// What the page shows under the canvas (text, in the user's language) and what the browser test
+// reads (window.clothlab.status): the stage, the cloth's path and size, the simulated time, the
+// steps and their rate, the frame rate, the language.
 EM_JS(void, set_page_status, (const char* stage, const char* backend, int grid_size, double time,
                               double steps, double steps_per_second, double frames_per_second,
-                              int diverged), {
+                              int diverged, const char* language, const char* text), {
   const page = window.clothlab || (window.clothlab = {});
   page.status = {
     stage: UTF8ToString(stage), backend: UTF8ToString(backend), grid_size: grid_size,
     time: time, steps: steps, steps_per_second: steps_per_second,
-    frames_per_second: frames_per_second, diverged: diverged != 0
+    frames_per_second: frames_per_second, diverged: diverged != 0,
+    language: UTF8ToString(language), text: UTF8ToString(text)
   };
+  document.documentElement.lang = page.status.language;
   if (page.onstatus) page.onstatus(page.status);
+});
+
+// The language the page asks for: ?lang=fr in its address, else the browser's (navigator.language,
+// "fr-FR"), into `out` (at most `size` bytes).
+EM_JS(void, page_language, (char* out, int size), {
+  const asked = new URLSearchParams(window.location.search).get('lang') || navigator.language || "";
+  stringToUTF8(asked, out, size);
 });
 // clang-format on
 
+// The stage as the status bar names it.
+const char* stage_word(stage_kind stage) {
+  switch (stage) {
+    case stage_kind::spring:
+      return tr("spring");
+    case stage_kind::coupled:
+      return tr("chain");
+    case stage_kind::cloth:
+      break;
+  }
+  return tr("cloth");
+}
+
 void publish_status(const scene& the_scene) {
   const std::string stage(stage_name(the_scene.stage()));
+  const run_status& status = the_scene.status();
+  const std::string text =
+      format(tr("clothlab · stage %s · cloth on the %s (N = %d) · t = %.2f s · %.0f steps/s · "
+                "%.0f frames/s%s · H: the keys"),
+             stage_word(the_scene.stage()), tr(backend_name(the_scene.backend())),
+             the_scene.cloth_stage.parameters.grid_size, status.time, the_scene.steps_per_second(),
+             the_scene.frames_per_second(), status.diverged ? tr(" · diverged") : "");
   set_page_status(stage.c_str(), backend_option(the_scene.backend()),
-                  the_scene.cloth_stage.parameters.grid_size, the_scene.status().time,
+                  the_scene.cloth_stage.parameters.grid_size, status.time,
                   static_cast<double>(the_scene.steps_taken()), the_scene.steps_per_second(),
-                  the_scene.frames_per_second(), the_scene.status().diverged ? 1 : 0);
+                  the_scene.frames_per_second(), status.diverged ? 1 : 0,
+                  std::string(current_language()).c_str(), text.c_str());
 }
 
 // The browser's wheel deltas are pixels (about 100 a notch in Chromium; lines, 3 a notch, in
@@ -135,12 +166,12 @@ void deliver_screenshot(stage_kind stage, int width, int height) {
   std::vector<unsigned char> png;
   std::string error;
   if (!framebuffer_png(width, height, png, error)) {
-    std::fprintf(stderr, "clothlab: screenshot failed: %s\n", error.c_str());
+    std::fprintf(stderr, tr("clothlab: screenshot failed: %s\n"), error.c_str());
     return;
   }
   const std::string name = "clothlab-" + std::string(stage_name(stage)) + ".png";
   download_png(png.data(), static_cast<int>(png.size()), name.c_str());
-  std::printf("clothlab: screenshot %s downloaded (%d x %d)\n", name.c_str(), width, height);
+  std::printf(tr("clothlab: screenshot %s downloaded (%d x %d)\n"), name.c_str(), width, height);
 }
 
 }  // namespace clothlab
@@ -178,6 +209,11 @@ EMSCRIPTEN_KEEPALIVE double clothlab_cpu_steps_per_second(int n, double seconds)
 
 int main() {
   using namespace clothlab;
+  // The page's language (?lang=, else the browser's; English for one clothlab does not speak).
+  start_messages();
+  char asked[64] = "";
+  page_language(asked, sizeof asked);
+  set_language(language_of_locale(asked));
   const options start;  // the defaults of docs/cli.md: the cloth, on the CPU
   double css_width = 1280.0, css_height = 800.0;
   emscripten_get_element_css_size("#canvas", &css_width, &css_height);
@@ -185,19 +221,20 @@ int main() {
   page.context = glfw_context::create("clothlab", std::max(static_cast<int>(css_width), 320),
                                       std::max(static_cast<int>(css_height), 240), error);
   if (!page.context) {
-    std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+    std::fprintf(stderr, tr("clothlab: %s\n"), error.c_str());
     return 1;
   }
   // Float colour attachments (the GPU cloth's state textures) are an extension in WebGL2; without
   // it the GPU path says why it cannot run (gpu_cloth), and the CPU path runs as before.
   if (!emscripten_webgl_enable_extension(emscripten_webgl_get_current_context(),
                                          "EXT_color_buffer_float"))
-    std::printf("clothlab: this browser has no EXT_color_buffer_float: no GPU cloth path\n");
+    std::printf("%s\n", tr("clothlab: this browser has no EXT_color_buffer_float: no GPU cloth "
+                           "path"));
   std::printf("clothlab: %s, %s\n", page.context->description().c_str(),
               page.context->origin().c_str());
   page.app = window_app::create(*page.context, start, error);
   if (!page.app) {
-    std::fprintf(stderr, "clothlab: %s\n", error.c_str());
+    std::fprintf(stderr, tr("clothlab: %s\n"), error.c_str());
     return 1;
   }
   glfwSetScrollCallback(page.context->window(), on_browser_wheel);

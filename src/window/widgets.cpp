@@ -1,9 +1,23 @@
 #include "window/widgets.hpp"
 
 #include <algorithm>
+#include <unordered_map>
 #include <vector>
 
 namespace clothlab {
+
+const char* ui_label(const char* english) {
+  static std::unordered_map<std::string, std::string> labels;
+  static unsigned generation = language_generation();
+  if (generation != language_generation()) {
+    labels.clear();
+    generation = language_generation();
+  }
+  std::string& label = labels[english];
+  if (label.empty())
+    label = std::string(tr(english)) + "###" + english;
+  return label.c_str();
+}
 
 float ui_scale() {
   return ImGui::GetFontSize() / 13.0f;

@@ -6,8 +6,9 @@
 
 #include <imgui.h>
 
-#include <cstdio>
 #include <string>
+
+#include "core/i18n.hpp"  // tr, format
 
 namespace clothlab {
 
@@ -26,12 +27,10 @@ enum class text_style { plain, disabled, coloured };
 void fixed_lines(const std::string& text, int lines, text_style style = text_style::plain,
                  const ImVec4& colour = {}, float width = 0.0f);
 
-// printf's formatting into a std::string (at most 511 characters).
-std::string format(const char* format_string, auto... values) {
-  char text[512];
-  std::snprintf(text, sizeof text, format_string, values...);
-  return text;
-}
+// A widget's label in the user's language, with the English text as its Dear ImGui id:
+// "Réinitialiser (R)###Reset (R)". The widget keeps its id, and so its state (a section open, a
+// slider being typed into), whatever the language. Valid until the language changes.
+const char* ui_label(const char* english);
 
 // Every slider clamps what is typed after Ctrl+click too, so that no value outside its range
 // (a zero time step, a grid of 1) can reach the simulation.

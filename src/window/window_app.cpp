@@ -14,7 +14,9 @@
 
 #include <GLFW/glfw3.h>
 
+#include "window/layout_probe.hpp"
 #include "window/panel.hpp"
+#include "window/panel_font.hpp"
 
 namespace clothlab {
 namespace {
@@ -135,9 +137,7 @@ class window_app::imgui_session {
     ImGui::StyleColorsDark();
     // HiDPI: the font made at the screen's scale (crisp, not stretched) and every size with it.
     const float scale = std::clamp(context.content_scale(), 1.0f, 4.0f);
-    ImFontConfig font;
-    font.SizePixels = std::round(13.0f * scale);  // Dear ImGui's default font is 13 px
-    io.Fonts->AddFontDefault(&font);
+    add_panel_font(std::round(13.0f * scale));  // the size of Dear ImGui's default font
     ImGui::GetStyle().ScaleAllSizes(scale);
     ImGui_ImplGlfw_InitForOpenGL(context.window(),
                                  true);  // chains to the window's own key callbacks
@@ -234,7 +234,7 @@ class window_app::mouse_control {
       the_scene.release_grab();
     } else if (left_drag_ == left_drag::sphere) {
       const glm::dvec3& c = the_scene.cloth_stage.parameters.sphere.centre;
-      std::printf("clothlab-window: sphere moved to (%.3f, %.3f, %.3f)\n", c.x, c.y, c.z);
+      window_log("sphere moved to (%.3f, %.3f, %.3f)", c.x, c.y, c.z);
     }
     print_camera("ended", the_scene.view);
     left_drag_ = left_drag::none;
@@ -244,9 +244,7 @@ class window_app::mouse_control {
     const char* what = left_drag_ == left_drag::grab     ? "grab"
                        : left_drag_ == left_drag::sphere ? "sphere"
                                                          : "orbit";
-    std::printf("clothlab-window: left drag %s (%s): camera yaw %.4f, pitch %.4f\n", when, what,
-                view.yaw, view.pitch);
-    std::fflush(stdout);
+    window_log("left drag %s (%s): camera yaw %.4f, pitch %.4f", when, what, view.yaw, view.pitch);
   }
 
   double last_x_ = 0.0;

@@ -16,6 +16,7 @@
 #include "app/command_line.hpp"
 #include "gl/renderer.hpp"
 #include "window/glfw_context.hpp"
+#include "window/layout_probe.hpp"
 #include "window/window_app.hpp"
 
 namespace clothlab {
@@ -56,12 +57,9 @@ class frame_counter {
     const double seconds = now_seconds - start_seconds_;
     const double steps_per_second =
         seconds > 0.0 ? static_cast<double>(steps - start_steps_) / seconds : 0.0;
-    std::printf(
-        "clothlab-window: %ld frames in %.2f s: mean frame time %.2f ms (%.1f frames/s), %.0f "
-        "steps/s\n",
-        done_, seconds, 1000.0 * seconds / static_cast<double>(done_),
-        static_cast<double>(done_) / seconds, steps_per_second);
-    std::fflush(stdout);
+    window_log("%ld frames in %.2f s: mean frame time %.2f ms (%.1f frames/s), %.0f steps/s", done_,
+               seconds, 1000.0 * seconds / static_cast<double>(done_),
+               static_cast<double>(done_) / seconds, steps_per_second);
     return true;
   }
 
@@ -81,9 +79,8 @@ void print_spring_plot(const spring_motion& motion) {
   float widest_gap = 0.0f;
   for (std::size_t i = 1; i < times.size(); ++i)
     widest_gap = std::max(widest_gap, times[i] - times[i - 1]);
-  std::printf("clothlab-window: the x(t) plot: %zu samples over %.2f s, widest gap %.4f s\n",
-              times.size(), static_cast<double>(times.back() - times.front()),
-              static_cast<double>(widest_gap));
+  window_log("the x(t) plot: %zu samples over %.2f s, widest gap %.4f s", times.size(),
+             static_cast<double>(times.back() - times.front()), static_cast<double>(widest_gap));
 }
 
 }  // namespace
@@ -92,9 +89,9 @@ void deliver_screenshot(stage_kind stage, int width, int height) {
   const std::filesystem::path path = screenshot_path(stage);
   std::string error;
   if (save_framebuffer_png(path.string(), width, height, error))
-    std::printf("clothlab-window: screenshot %s\n", path.c_str());
+    std::printf(tr("clothlab-window: screenshot %s\n"), path.c_str());
   else
-    std::fprintf(stderr, "clothlab-window: screenshot failed: %s\n", error.c_str());
+    std::fprintf(stderr, tr("clothlab-window: screenshot failed: %s\n"), error.c_str());
   std::fflush(stdout);
 }
 
@@ -102,6 +99,7 @@ void deliver_screenshot(stage_kind stage, int width, int height) {
 
 int main(int argc, char** argv) {
   using namespace clothlab;
+  start_messages();  // the user's language, before the first word (--lang may change it)
   const parse_result parsed = parse_command_line(argc, argv);
   if (!parsed.parsed)
     return parsed.exit_code;
@@ -110,16 +108,16 @@ int main(int argc, char** argv) {
   std::string error;
   const auto context = glfw_context::create("clothlab", initial_width, initial_height, error);
   if (!context) {
-    std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
+    std::fprintf(stderr, tr("clothlab-window: %s\n"), error.c_str());
     return 1;
   }
-  std::printf("clothlab-window: %s, %s\n", context->description().c_str(),
+  std::printf(tr("clothlab-window: %s, %s\n"), context->description().c_str(),
               context->origin().c_str());
   std::fflush(stdout);
 
   const auto app = window_app::create(*context, start, error);
   if (!app) {
-    std::fprintf(stderr, "clothlab-window: %s\n", error.c_str());
+    std::fprintf(stderr, tr("clothlab-window: %s\n"), error.c_str());
     return 1;
   }
   const scene& the_scene = app->the_scene();
@@ -155,8 +153,8 @@ int main(int argc, char** argv) {
       break;
   }
   // The GPU paths' state comes back only for what the panel shows (scene.hpp).
-  std::printf("clothlab-window: the GPU state was read back %ld times over %.1f s\n",
-              the_scene.readbacks(), glfwGetTime());
+  window_log("the GPU state was read back %ld times over %.1f s", the_scene.readbacks(),
+             glfwGetTime());
   print_spring_plot(the_scene.motion());
   return 0;
 }

@@ -17,6 +17,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/i18n.hpp"
+
 namespace clothlab::lab {
 
 inline constexpr int max_reported_checks = 3;
@@ -79,10 +81,12 @@ std::string difference(const Value& got, const Value& expected, double tolerance
     off = std::abs(got - expected);
   else
     off = glm::length(got - expected);
-  return "\n    expected " + show(expected, digits) + ", got " + show(got, digits) +
-         (std::isfinite(off) ? ": off by " + number(off, 3) + ", more than the " +
-                                   number(tolerance, 3) + " allowed"
-                             : std::string());
+  const std::string expected_text = show(expected, digits), got_text = show(got, digits);
+  if (!std::isfinite(off))
+    return "\n    " + format(tr("expected %s, got %s"), expected_text.c_str(), got_text.c_str());
+  return "\n    " + format(tr("expected %s, got %s: off by %s, more than the %s allowed"),
+                           expected_text.c_str(), got_text.c_str(), number(off, 3).c_str(),
+                           number(tolerance, 3).c_str());
 }
 
 // What a failed comparison of a force says first: `reversed` when the answer is the expected
@@ -162,6 +166,11 @@ namespace clothlab::lab {
 struct failures {
   std::size_t wrong = 0, first = 0;
 };
+// "(3 of 25 are wrong)", on a line of its own.
+inline std::string how_many_wrong(std::size_t wrong, std::size_t count) {
+  return "\n    " +
+         format(trn("(%zu of %zu is wrong)", "(%zu of %zu are wrong)", wrong), wrong, count);
+}
 template <class Passes>
 failures count_failures(std::size_t count, Passes passes) {
   failures f;
@@ -183,7 +192,7 @@ failures count_failures(std::size_t count, Passes passes) {
   } else if (const std::size_t k = lab_failures_.first; false) {                                 \
   } else                                                                                         \
     LAB_EXPECT_VEC(got, expected, tolerance, what)                                               \
-        << "\n    (" << lab_failures_.wrong << " of " << (count) << " are wrong)"
+        << ::clothlab::lab::how_many_wrong(lab_failures_.wrong, (count))
 
 // The same for forces (LAB_EXPECT_FORCE: a reversed force is named as such).
 #define LAB_EXPECT_EVERY_FORCE(k, count, got, expected, tolerance, what, reversed)               \
@@ -194,4 +203,4 @@ failures count_failures(std::size_t count, Passes passes) {
   } else if (const std::size_t k = lab_failures_.first; false) {                                 \
   } else                                                                                         \
     LAB_EXPECT_FORCE(got, expected, tolerance, what, reversed)                                   \
-        << "\n    (" << lab_failures_.wrong << " of " << (count) << " are wrong)"
+        << ::clothlab::lab::how_many_wrong(lab_failures_.wrong, (count))

@@ -8,6 +8,7 @@
 
 #include <csignal>
 
+#include "core/i18n.hpp"
 #include "lab_check.hpp"
 #include "runner_client.hpp"
 
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   ::prctl(PR_SET_DUMPABLE, 0);
 #endif
   std::signal(SIGPIPE, SIG_IGN);  // a runner that is gone is seen by the write that fails
+  clothlab::start_messages();     // the hints in the student's language (the locale, LANGUAGE)
   ::testing::InitGoogleTest(&argc, argv);
   ::testing::UnitTest::GetInstance()->listeners().Append(new lab_listener);
   return RUN_ALL_TESTS();

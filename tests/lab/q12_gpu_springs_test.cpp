@@ -36,11 +36,13 @@ double force_tolerance(int springs, double K, double size) {
 }
 
 // What a force of the wrong sign says.
-std::string reversed(const std::string& where, const std::string& springs = "springs") {
-  return "Q12: " + where + " feels its " + springs +
-         " with the wrong sign (pushed where a stretched spring pulls, and pulled where a "
-         "compressed one pushes): equation 2, spring_force(p_i, p_j, K, L0), is the force ON "
-         "p_i; which of the two is this texel's position p?";
+// (`where` and `springs` already in the student's language; `springs` empty: all of them.)
+std::string reversed(const std::string& where, const std::string& springs = "") {
+  return format(tr("Q12: %s feels its %s with the wrong sign (pushed where a stretched spring "
+                   "pulls, and pulled where a compressed one pushes): equation 2, "
+                   "spring_force(p_i, p_j, K, L0), is the force ON p_i; which of the two is this "
+                   "texel's position p?"),
+                where.c_str(), springs.empty() ? tr("springs") : springs.c_str());
 }
 
 // A still N x N cloth of side S with the given stiffnesses (0 turns a family off); no gravity,
@@ -95,9 +97,9 @@ std::vector<lab::force_part> family_forces(const spring_mesh& cloth, int ku, int
                                   {1, 1, 1}, {-1, -1, 1}, {1, -1, 1}, {-1, 1, 1},
                                   {2, 0, 2}, {-2, 0, 2},  {0, 2, 2},  {0, -2, 2}};
   const int n = grid(cloth);
-  std::vector<lab::force_part> parts = {{"structural springs", glm::dvec3(0.0)},
-                                        {"shear springs", glm::dvec3(0.0)},
-                                        {"bending springs", glm::dvec3(0.0)}};
+  std::vector<lab::force_part> parts = {{tr("structural springs"), glm::dvec3(0.0)},
+                                        {tr("shear springs"), glm::dvec3(0.0)},
+                                        {tr("bending springs"), glm::dvec3(0.0)}};
   for (const neighbour& o : neighbours) {
     const int u = ku + o.du, v = kv + o.dv;
     if (u >= 0 && u < n && v >= 0 && v < n)
@@ -143,10 +145,10 @@ void deform(spring_mesh& cloth, double amplitude) {
 std::string place(int ku, int kv, int n) {
   const bool u_border = ku == 0 || ku == n - 1, v_border = kv == 0 || kv == n - 1;
   if (u_border && v_border)
-    return "the corner " + texel(ku, kv);
+    return format(tr("the corner %s"), texel(ku, kv).c_str());
   if (u_border || v_border)
-    return "the border texel " + texel(ku, kv);
-  return "the inner texel " + texel(ku, kv);
+    return format(tr("the border texel %s"), texel(ku, kv).c_str());
+  return format(tr("the inner texel %s"), texel(ku, kv).c_str());
 }
 
 // 5 x 5, S = 4 (h = 1), the three families with their own stiffnesses; the centre s(2, 2) moved.
@@ -166,12 +168,12 @@ TEST_F(Q12GpuSprings, TheDisplacedCentreFeelsAllTwelveSprings) {
   LAB_EXPECT_FORCE(at(force, cloth, 2, 2),
                    expected_force(cloth, 2, 2, 1.0, K_structural, K_shear, K_bending), tolerance,
                    family_message(at(force, cloth, 2, 2), cloth, 2, 2, 1.0, K_structural, K_shear,
-                                  K_bending, tolerance, "the centre texel (2, 2)",
-                                  "Q12: the centre texel (2, 2), moved off its rest place, should "
-                                  "be pulled back by the springs to its 12 neighbours (4 "
-                                  "structural, 4 shear, 4 bending): its new velocity is dt F / m. "
-                                  "Does the velocity shader add the spring forces?"),
-                   reversed("the centre texel (2, 2), moved off its rest place,"));
+                                  K_bending, tolerance, tr("the centre texel (2, 2)"),
+                                  tr("Q12: the centre texel (2, 2), moved off its rest place, "
+                                     "should be pulled back by the springs to its 12 neighbours "
+                                     "(4 structural, 4 shear, 4 bending): its new velocity is "
+                                     "dt F / m. Does the velocity shader add the spring forces?")),
+                   reversed(tr("the centre texel (2, 2), moved off its rest place,")));
 }
 
 TEST_F(Q12GpuSprings, EachNeighbourFeelsItsSpringToTheCentre) {
@@ -181,18 +183,22 @@ TEST_F(Q12GpuSprings, EachNeighbourFeelsItsSpringToTheCentre) {
   const struct {
     int ku, kv;
     const char* family;
-  } neighbours[] = {{3, 2, "structural"}, {2, 1, "structural"}, {3, 3, "shear"},
-                    {1, 3, "shear"},      {4, 2, "bending"},    {2, 0, "bending"}};
+  } neighbours[] = {
+      // TRANSLATORS: a spring of a family, in "texel (3, 2) should feel its structural spring".
+      {3, 2, N_("structural spring")}, {2, 1, N_("structural spring")},
+      {3, 3, N_("shear spring")},      {1, 3, N_("shear spring")},
+      {4, 2, N_("bending spring")},    {2, 0, N_("bending spring")}};
   for (const auto& n : neighbours) {
     const double tolerance = force_tolerance(12, K_structural, 2.5);
     LAB_EXPECT_FORCE(
         at(force, cloth, n.ku, n.kv),
         expected_force(cloth, n.ku, n.kv, 1.0, K_structural, K_shear, K_bending), tolerance,
         family_message(at(force, cloth, n.ku, n.kv), cloth, n.ku, n.kv, 1.0, K_structural, K_shear,
-                       K_bending, tolerance, "texel " + texel(n.ku, n.kv),
-                       "Q12: texel " + texel(n.ku, n.kv) + " should feel its " + n.family +
-                           " spring to the displaced centre (2, 2), and nothing else"),
-        reversed("texel " + texel(n.ku, n.kv)));
+                       K_bending, tolerance, format(tr("texel %s"), texel(n.ku, n.kv).c_str()),
+                       format(tr("Q12: texel %s should feel its %s to the displaced centre "
+                                 "(2, 2), and nothing else"),
+                              texel(n.ku, n.kv).c_str(), tr(n.family))),
+        reversed(format(tr("texel %s"), texel(n.ku, n.kv).c_str())));
   }
 }
 
@@ -208,15 +214,17 @@ TEST_F(Q12GpuSprings, StructuralSpringsPullAStretchedTexelBack) {
   const double side = 100.0 * (1 - std::sqrt(1.25)) / std::sqrt(1.25);
   LAB_EXPECT_FORCE(at(force, cloth, 2, 1), glm::dvec3(-50 + side, 0, 0),
                    force_tolerance(3, 100.0, 1.5),
-                   "Q12, structural springs: texel (2, 1), pulled 0.5 m away from (1, 1), should "
-                   "be pulled back (towards -x) by its structural springs to (1, 1), (2, 0) and "
-                   "(2, 2), of family 0, stiffness[0] and rest length rest_length[0] = h",
-                   reversed("texel (2, 1), pulled 0.5 m away from (1, 1),"));
+                   tr("Q12, structural springs: texel (2, 1), pulled 0.5 m away from (1, 1), "
+                      "should be pulled back (towards -x) by its structural springs to (1, 1), "
+                      "(2, 0) and (2, 2), of family 0, stiffness[0] and rest length "
+                      "rest_length[0] = h"),
+                   reversed(tr("texel (2, 1), pulled 0.5 m away from (1, 1),")));
   LAB_EXPECT_FORCE(at(force, cloth, 1, 1), glm::dvec3(50, 0, 0), force_tolerance(4, 100.0, 1.5),
-                   "Q12, structural springs: texel (1, 1) should feel the stretched spring to its "
-                   "neighbour (ku+1, kv) = (2, 1), pulling it towards +x: on the GPU each texel "
-                   "gathers its own springs, so the other end of every spring must add it too",
-                   reversed("texel (1, 1)"));
+                   tr("Q12, structural springs: texel (1, 1) should feel the stretched spring to "
+                      "its neighbour (ku+1, kv) = (2, 1), pulling it towards +x: on the GPU each "
+                      "texel gathers its own springs, so the other end of every spring must add "
+                      "it too"),
+                   reversed(format(tr("texel %s"), "(1, 1)")));
 }
 
 // Shear only, K = 100: the centre s(1, 1) moved to c = (0.3, 0.2, 0.4) is held by its four
@@ -233,15 +241,15 @@ TEST_F(Q12GpuSprings, ShearSpringsHoldTheDiagonals) {
        {glm::dvec3(-1, -1, 0), glm::dvec3(1, -1, 0), glm::dvec3(1, 1, 0), glm::dvec3(-1, 1, 0)})
     expected += spring_force(c, corner, 100.0, L0);
   LAB_EXPECT_FORCE(at(force, cloth, 1, 1), expected, force_tolerance(4, 100.0, 1.5),
-                   "Q12, shear springs: the centre texel (1, 1), moved off its place, should be "
-                   "held by its four diagonal springs to (ku+-1, kv+-1), of family 1 "
-                   "(stiffness[1], rest length rest_length[1] = h sqrt 2)",
-                   reversed("the centre texel (1, 1), moved off its place,"));
+                   tr("Q12, shear springs: the centre texel (1, 1), moved off its place, should "
+                      "be held by its four diagonal springs to (ku+-1, kv+-1), of family 1 "
+                      "(stiffness[1], rest length rest_length[1] = h sqrt 2)"),
+                   reversed(tr("the centre texel (1, 1), moved off its place,")));
   LAB_EXPECT_FORCE(at(force, cloth, 0, 0), spring_force(glm::dvec3(-1, -1, 0), c, 100.0, L0),
                    force_tolerance(1, 100.0, 1.5),
-                   "Q12, shear springs: the corner texel (0, 0) should feel its one diagonal "
-                   "spring, to (1, 1)",
-                   reversed("the corner texel (0, 0)"));
+                   tr("Q12, shear springs: the corner texel (0, 0) should feel its one diagonal "
+                      "spring, to (1, 1)"),
+                   reversed(tr("the corner texel (0, 0)")));
 }
 
 // Bending only, K = 7: s(2, 0) lifted from (1, -1, 0) to (1, -1, 1). Its bending springs go two
@@ -255,15 +263,15 @@ TEST_F(Q12GpuSprings, BendingSpringsSkipOneTexel) {
   const double scale = 7.0 * (2 - std::sqrt(5.0)) / std::sqrt(5.0);
   LAB_EXPECT_FORCE(at(force, cloth, 2, 0), scale * glm::dvec3(2, -2, 2),
                    force_tolerance(2, 7.0, 1.5),
-                   "Q12, bending springs: texel (2, 0), lifted out of the plane, should be pulled "
-                   "back (down) by its bending springs to (ku-2, kv) and (ku, kv+2), of family 2 "
-                   "(stiffness[2], rest length rest_length[2] = 2h)",
-                   reversed("texel (2, 0), lifted out of the plane,"));
+                   tr("Q12, bending springs: texel (2, 0), lifted out of the plane, should be "
+                      "pulled back (down) by its bending springs to (ku-2, kv) and (ku, kv+2), of "
+                      "family 2 (stiffness[2], rest length rest_length[2] = 2h)"),
+                   reversed(tr("texel (2, 0), lifted out of the plane,")));
   LAB_EXPECT_FORCE(at(force, cloth, 0, 0), spring_force({-1, -1, 0}, {1, -1, 1}, 7.0, 2.0),
                    force_tolerance(2, 7.0, 1.5),
-                   "Q12, bending springs: texel (0, 0) should feel the bending spring to "
-                   "(ku+2, kv) = (2, 0)",
-                   reversed("texel (0, 0)"));
+                   tr("Q12, bending springs: texel (0, 0) should feel the bending spring to "
+                      "(ku+2, kv) = (2, 0)"),
+                   reversed(format(tr("texel %s"), "(0, 0)")));
 }
 
 // 2 x 2, S = 1 (h = 1), the three families with different stiffnesses: s(1, 1) lifted by 0.5
@@ -281,12 +289,12 @@ TEST_F(Q12GpuSprings, EachFamilyUsesItsOwnStiffness) {
   const double tolerance = force_tolerance(3, 300.0, 1.0);
   LAB_EXPECT_FORCE(at(force, cloth, 1, 1), expected, tolerance,
                    family_message(at(force, cloth, 1, 1), cloth, 1, 1, 1.0, 300.0, 70.0, 11.0,
-                                  tolerance, "texel (1, 1), lifted by 0.5 m,",
-                                  "Q12: with K_struct = 300 and K_shear = 70, texel (1, 1) lifted "
-                                  "by 0.5 m should feel two structural springs with stiffness[0] "
-                                  "and one shear spring with stiffness[1]: the family of "
-                                  "neighbour i is neighbours[i].z"),
-                   reversed("texel (1, 1), lifted by 0.5 m,"));
+                                  tolerance, tr("texel (1, 1), lifted by 0.5 m,"),
+                                  tr("Q12: with K_struct = 300 and K_shear = 70, texel (1, 1) "
+                                     "lifted by 0.5 m should feel two structural springs with "
+                                     "stiffness[0] and one shear spring with stiffness[1]: the "
+                                     "family of neighbour i is neighbours[i].z")),
+                   reversed(tr("texel (1, 1), lifted by 0.5 m,")));
 }
 
 // 5 x 5, S = 4: the corner s(0, 0) moved to (-2.4, -2.3, 0.2) has five springs, structural to
@@ -305,11 +313,11 @@ TEST_F(Q12GpuSprings, ACornerTexelReadsNoNeighbourOutsideTheGrid) {
   const double tolerance = force_tolerance(5, K_structural, 2.5);
   LAB_EXPECT_FORCE(at(force, cloth, 0, 0), f, tolerance,
                    family_message(at(force, cloth, 0, 0), cloth, 0, 0, 1.0, K_structural, K_shear,
-                                  K_bending, tolerance, "the corner texel (0, 0)",
-                                  "Q12: the corner texel (0, 0) has springs to (1, 0), (0, 1), "
-                                  "(1, 1), (2, 0) and (0, 2) only: texels outside the N x N grid "
-                                  "must be skipped"),
-                   reversed("the corner texel (0, 0)"));
+                                  K_bending, tolerance, tr("the corner texel (0, 0)"),
+                                  tr("Q12: the corner texel (0, 0) has springs to (1, 0), (0, 1), "
+                                     "(1, 1), (2, 0) and (0, 2) only: texels outside the N x N "
+                                     "grid must be skipped")),
+                   reversed(tr("the corner texel (0, 0)")));
 }
 
 // A 4 x 4 cloth (S = 3, h = 1), every texel moved, every family on: each texel, corners and
@@ -326,10 +334,11 @@ TEST_F(Q12GpuSprings, EveryTexelFeelsOnlyTheSpringsInsideTheGrid) {
       family_message(at(force, cloth, int(k % 4), int(k / 4)), cloth, int(k % 4), int(k / 4), 1.0,
                      40.0, 30.0, 20.0, force_tolerance(12, 40.0, 2.0),
                      place(int(k % 4), int(k / 4), 4),
-                     "Q12: " + place(int(k % 4), int(k / 4), 4) +
-                         " of a deformed 4 x 4 cloth should feel the springs to its neighbours "
-                         "inside the grid, and none to texels outside it (int(k % 4) or "
-                         "int(k / 4) < 0 or > N-1 = 3: skip them, joined(k, i) says which)"),
+                     format(tr("Q12: %s of a deformed 4 x 4 cloth should feel the springs to its "
+                               "neighbours inside the grid, and none to texels outside it "
+                               "(int(k %% 4) or int(k / 4) < 0 or > N-1 = 3: skip them, "
+                               "joined(k, i) says which)"),
+                            place(int(k % 4), int(k / 4), 4).c_str())),
       reversed(place(int(k % 4), int(k / 4), 4)));
 }
 
@@ -350,18 +359,19 @@ TEST_F(Q12GpuSprings, SpringForcesSumToZeroAndExertNoTorque) {
     }
   }
   LAB_EXPECT_TRUE(largest.x + largest.y + largest.z > 1.0,
-                  "Q12: a deformed cloth with stiff springs should feel spring forces on the GPU");
+                  tr("Q12: a deformed cloth with stiff springs should feel spring forces on the "
+                     "GPU"));
   // Tolerance: the rounding of every spring force at both of its ends (80 structural ends of
   // K = 500, 64 shear ends of K = 200, 60 bending ends of K = 50; positions of size 2.5), and for
   // the torque, times the size of the positions.
   const double tolerance = lab::rounding(2.5 * (80 * 500.0 + 64 * 200.0 + 60 * 50.0));
   LAB_EXPECT_VEC(sum, glm::dvec3(0.0), tolerance,
-                 "Q12: the spring forces should sum to zero (the two ends of a spring feel "
-                 "opposite forces): does every texel add each of its springs once, with "
-                 "spring_force(p, p_j, ...) on itself?");
+                 tr("Q12: the spring forces should sum to zero (the two ends of a spring feel "
+                    "opposite forces): does every texel add each of its springs once, with "
+                    "spring_force(p, p_j, ...) on itself?"));
   LAB_EXPECT_VEC(torque, glm::dvec3(0.0), 2.5 * tolerance,
-                 "Q12: the spring forces should exert no total torque (each pair lies along its "
-                 "spring)");
+                 tr("Q12: the spring forces should exert no total torque (each pair lies along "
+                    "its spring)"));
 }
 
 // At rest, every spring at its rest length: no force anywhere (a wrong rest length shows here).
@@ -372,9 +382,9 @@ TEST_F(Q12GpuSprings, AClothAtRestFeelsNoSpringForce) {
   LAB_EXPECT_EVERY_VEC(
       k, 5 * 5, at(force, cloth, int(k % 5), int(k / 5)), glm::dvec3(0.0),
       force_tolerance(12, 500.0, 2.0),
-      "Q12: on the flat cloth at rest every spring has its rest length (h, h sqrt 2 "
-      "or 2h for its family): " +
-          place(int(k % 5), int(k / 5), 5) + " should feel no spring force");
+      format(tr("Q12: on the flat cloth at rest every spring has its rest length (h, h sqrt 2 or "
+                "2h for its family): %s should feel no spring force"),
+             place(int(k % 5), int(k / 5), 5).c_str()));
 }
 
 }  // namespace

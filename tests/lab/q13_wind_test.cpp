@@ -38,8 +38,7 @@ cloth_parameters windy_cloth(double strength, const glm::dvec3& direction) {
 
 // "vertex 5 = s(1, 1)"
 std::string vertex(std::size_t k, int n) {
-  return "vertex " + std::to_string(k) + " = s(" + std::to_string(k % n) + ", " +
-         std::to_string(k / n) + ")";
+  return format(tr("vertex %zu = s(%zu, %zu)"), k, k % std::size_t(n), k / std::size_t(n));
 }
 
 // The cloth of windy_cloth turned by 30 degrees about x: s(ku, kv) = (x, y cos 30, y sin 30),
@@ -94,10 +93,13 @@ double wind_tolerance(double K_w) {
 }
 
 // What a wind force of the wrong sign says.
-const std::string reversed_wind =
-    "the wind force has the wrong sign: F_w = K_w <n, u_w> n pushes the cloth towards the side "
-    "the wind blows to, along the normal; <n, u_w> is negative where the wind meets the other "
-    "side of the cloth, and keeps its sign";
+// (A function: the catalogue is read once main has started.)
+std::string reversed_wind() {
+  return tr(
+      "the wind force has the wrong sign: F_w = K_w <n, u_w> n pushes the cloth towards "
+      "the side the wind blows to, along the normal; <n, u_w> is negative where the wind "
+      "meets the other side of the cloth, and keeps its sign");
+}
 
 // Flat cloth: n = (0, 0, 1). Direction (0, 3, 4) -> u_w = (0, 0.6, 0.8), <n, u_w> = 0.8, and
 // with K_w = 3 every vertex feels F_w = 3 * 0.8 * (0, 0, 1) = (0, 0, 2.4).
@@ -107,11 +109,11 @@ TEST(Q13Wind, AFlatClothFeelsTheWindAlongItsNormal) {
   LAB_EXPECT_EVERY_FORCE(
       k, cloth.particles().size(), cloth.particles().get_force(k), glm::dvec3(0, 0, 2.4),
       wind_tolerance(3.0),
-      "Q13: on the flat cloth (n = (0, 0, 1)) a wind of strength K_w = 3 blowing "
-      "along (0, 3, 4) (u_w = (0, 0.6, 0.8) once normalised) pushes every vertex "
-      "with K_w <n, u_w> n = (0, 0, 2.4); vertex " +
-          std::to_string(k),
-      "Q13: " + reversed_wind);
+      format(tr("Q13: on the flat cloth (n = (0, 0, 1)) a wind of strength K_w = 3 blowing along "
+                "(0, 3, 4) (u_w = (0, 0.6, 0.8) once normalised) pushes every vertex with "
+                "K_w <n, u_w> n = (0, 0, 2.4); vertex %zu"),
+             std::size_t(k)),
+      std::string("Q13") + colon() + reversed_wind());
 }
 
 // The cloth turned by 30 degrees about x: s(ku, kv) = (x, y cos 30, y sin 30), whose normal is
@@ -126,10 +128,10 @@ TEST(Q13Wind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
   LAB_EXPECT_EVERY_FORCE(
       k, cloth.particles().size(), cloth.particles().get_force(k), 5.0 * -s * n,
       wind_tolerance(5.0),
-      "Q13: a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
-      "strength 5 along y should feel K_w <n, u_w> n = (0, 1.25, -2.165); vertex " +
-          std::to_string(k),
-      "Q13: " + reversed_wind);
+      format(tr("Q13: a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of strength 5 "
+                "along y should feel K_w <n, u_w> n = (0, 1.25, -2.165); vertex %zu"),
+             std::size_t(k)),
+      std::string("Q13") + colon() + reversed_wind());
 }
 
 // Flat cloth (n = (0, 0, 1)), wind of strength 4 blowing down along (0, 0, -2), against the
@@ -140,11 +142,11 @@ TEST(Q13Wind, AWindAgainstTheNormalPushesTheOtherWay) {
   LAB_EXPECT_EVERY_FORCE(
       k, cloth.particles().size(), cloth.particles().get_force(k), glm::dvec3(0, 0, -4),
       wind_tolerance(4.0),
-      "Q13: a wind blowing down (u_w = (0, 0, -1)) on the flat cloth (n = (0, 0, 1)) "
-      "has <n, u_w> = -1 and pushes every vertex DOWN with K_w <n, u_w> n = "
-      "(0, 0, -4) (keep the sign of <n, u_w>); " +
-          vertex(k, 4),
-      "Q13: " + reversed_wind);
+      format(tr("Q13: a wind blowing down (u_w = (0, 0, -1)) on the flat cloth (n = (0, 0, 1)) "
+                "has <n, u_w> = -1 and pushes every vertex DOWN with K_w <n, u_w> n = (0, 0, -4) "
+                "(keep the sign of <n, u_w>); %s"),
+             vertex(k, 4).c_str()),
+      std::string("Q13") + colon() + reversed_wind());
 }
 
 // The curved cloth (see curve): every vertex feels K_w <n, u_w> n with its own normal.
@@ -156,18 +158,18 @@ TEST(Q13Wind, EveryVertexOfACurvedClothFeelsTheWindOnItsOwnNormal) {
   cloth.compute_force();
   LAB_EXPECT_EVERY_VEC(k, cloth.particles().size(), cloth.particles().get_force(k), expected[k],
                        wind_tolerance(3.0),
-                       "Q13: on a curved cloth each vertex has its own normal n(ku, kv); a wind of "
-                       "strength 3 along (1, 2, 0.5) pushes it with K_w <n, u_w> n, u_w the unit "
-                       "direction, along n, towards the side the wind blows (<n, u_w> may be "
-                       "negative); " +
-                           vertex(k, 4));
+                       format(tr("Q13: on a curved cloth each vertex has its own normal "
+                                 "n(ku, kv); a wind of strength 3 along (1, 2, 0.5) pushes it "
+                                 "with K_w <n, u_w> n, u_w the unit direction, along n, towards "
+                                 "the side the wind blows (<n, u_w> may be negative); %s"),
+                              vertex(k, 4).c_str()));
 }
 
 TEST(Q13Wind, NoWindNoForce) {
   spring_mesh cloth(windy_cloth(0.0, {0, 1, 0}));
   cloth.compute_force();
   LAB_EXPECT_EVERY_VEC(k, cloth.particles().size(), cloth.particles().get_force(k), glm::dvec3(0.0),
-                       0.0, "Q13: with K_w = 0 there is no wind force");
+                       0.0, tr("Q13: with K_w = 0 there is no wind force"));
 }
 
 using Q13GpuWind = lab::OffscreenGl;
@@ -186,10 +188,10 @@ TEST_F(Q13GpuWind, TheGpuStepAddsTheWindAlongTheNormal) {
   LAB_EXPECT_EVERY_VEC(
       k, cloth.particles().size(), cloth.particles().get_velocity(k), glm::dvec3(0, 0, 0.012),
       0.01 / 2.0 * wind_tolerance(3.0),
-      "Q13 (GPU): the velocity shader should add K_w <n, u_w> n to the force: after "
-      "one step of 0.01 s a 2 kg vertex of the flat cloth in a wind of strength 3 "
-      "along (0, 3, 4) moves at (0, 0, 0.012); texel " +
-          std::to_string(k));
+      format(tr("Q13 (GPU): the velocity shader should add K_w <n, u_w> n to the force: after one "
+                "step of 0.01 s a 2 kg vertex of the flat cloth in a wind of strength 3 along "
+                "(0, 3, 4) moves at (0, 0, 0.012); texel %zu"),
+             std::size_t(k)));
 }
 
 // The tilted cloth of the CPU test on the GPU: n = (0, -0.5, 0.866), wind of strength 5 along y,
@@ -202,11 +204,11 @@ TEST_F(Q13GpuWind, ATiltedClothIsPushedAlongItsNormalNotAlongTheWind) {
   const glm::dvec3 n = {0, -0.5, std::cos(M_PI / 6)};
   LAB_EXPECT_EVERY_FORCE(
       k, force.size(), force[k], 5.0 * -0.5 * n, wind_tolerance(5.0),
-      "Q13 (GPU): a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
-      "strength 5 along y has <n, u_w> = -0.5 (negative: keep its sign) and should "
-      "feel K_w <n, u_w> n = (0, 1.25, -2.165), along n, not along the wind; " +
-          vertex(k, 4),
-      "Q13 (GPU): " + reversed_wind);
+      format(tr("Q13 (GPU): a cloth tilted by 30 degrees (n = (0, -0.5, 0.866)) in a wind of "
+                "strength 5 along y has <n, u_w> = -0.5 (negative: keep its sign) and should feel "
+                "K_w <n, u_w> n = (0, 1.25, -2.165), along n, not along the wind; %s"),
+             vertex(k, 4).c_str()),
+      std::string("Q13 (GPU)") + colon() + reversed_wind());
 }
 
 // The flat cloth on the GPU in a wind blowing down: F_w = (0, 0, -4).
@@ -215,11 +217,11 @@ TEST_F(Q13GpuWind, AWindAgainstTheNormalPushesTheOtherWay) {
   const spring_mesh cloth(p);
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
   LAB_EXPECT_EVERY_FORCE(k, force.size(), force[k], glm::dvec3(0, 0, -4), wind_tolerance(4.0),
-                         "Q13 (GPU): a wind blowing down (u_w = (0, 0, -1)) on the flat cloth "
-                         "(n = (0, 0, 1)) has <n, u_w> = -1 and pushes every texel DOWN with "
-                         "K_w <n, u_w> n = (0, 0, -4); " +
-                             vertex(k, 4),
-                         "Q13 (GPU): " + reversed_wind);
+                         format(tr("Q13 (GPU): a wind blowing down (u_w = (0, 0, -1)) on the "
+                                   "flat cloth (n = (0, 0, 1)) has <n, u_w> = -1 and pushes every "
+                                   "texel DOWN with K_w <n, u_w> n = (0, 0, -4); %s"),
+                                vertex(k, 4).c_str()),
+                         std::string("Q13 (GPU)") + colon() + reversed_wind());
 }
 
 // The curved cloth on the GPU: each texel's own normal, read from normal_texture at that texel.
@@ -232,10 +234,10 @@ TEST_F(Q13GpuWind, EveryTexelOfACurvedClothFeelsTheWindOnItsOwnNormal) {
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
   LAB_EXPECT_EVERY_VEC(
       k, force.size(), force[k], expected[k], wind_tolerance(3.0),
-      "Q13 (GPU): on a curved cloth each texel has its own normal n, read from "
-      "normal_texture at this texel k; a wind of strength 3 along (1, 2, 0.5) pushes "
-      "it with K_w <n, u_w> n (<n, u_w> may be negative); " +
-          vertex(k, 4));
+      format(tr("Q13 (GPU): on a curved cloth each texel has its own normal n, read from "
+                "normal_texture at this texel k; a wind of strength 3 along (1, 2, 0.5) pushes it "
+                "with K_w <n, u_w> n (<n, u_w> may be negative); %s"),
+             vertex(k, 4).c_str()));
 }
 
 TEST_F(Q13GpuWind, NoWindNoForce) {
@@ -243,8 +245,9 @@ TEST_F(Q13GpuWind, NoWindNoForce) {
   spring_mesh cloth(p);
   curve(cloth);
   const std::vector<glm::dvec3> force = gpu_forces(cloth, p);
-  LAB_EXPECT_EVERY_VEC(k, force.size(), force[k], glm::dvec3(0.0), 0.0,
-                       "Q13 (GPU): with K_w = 0 there is no wind force; " + vertex(k, 4));
+  LAB_EXPECT_EVERY_VEC(
+      k, force.size(), force[k], glm::dvec3(0.0), 0.0,
+      format(tr("Q13 (GPU): with K_w = 0 there is no wind force; %s"), vertex(k, 4).c_str()));
 }
 
 }  // namespace

@@ -38,24 +38,24 @@ TEST(Q5CoupledSprings, TheSecondSpringPullsTheSecondMassBack) {
   coupled_springs chain = chain_at(2, 20.0, {{0.1, 0, 1}, {0.1, 0, 0.5}, {0.1, 0, -0.2}});
   chain.compute_force();
   LAB_EXPECT_FORCE(chain.particles().get_force(2), glm::dvec3(0, 0, 4), two_masses_tolerance,
-                   "Q5: mass 2 hangs 0.2 m below the rest length of the second spring, which "
-                   "should pull it up with K (L0 - L) = 4 N; is the second spring (p1-p2) in "
-                   "compute_force?",
-                   "Q5: the stretched second spring pushes mass 2 down instead of pulling it up "
-                   "(the force has the wrong sign): spring_force(a, b, K, L0), equation 2, is the "
-                   "force on the end at a; which end is mass 2?");
+                   tr("Q5: mass 2 hangs 0.2 m below the rest length of the second spring, which "
+                      "should pull it up with K (L0 - L) = 4 N; is the second spring (p1-p2) in "
+                      "compute_force?"),
+                   tr("Q5: the stretched second spring pushes mass 2 down instead of pulling it "
+                      "up (the force has the wrong sign): spring_force(a, b, K, L0), equation 2, "
+                      "is the force on the end at a; which end is mass 2?"));
 }
 
 TEST(Q5CoupledSprings, TheSecondSpringPullsTheFirstMassDownToo) {
   coupled_springs chain = chain_at(2, 20.0, {{0.1, 0, 1}, {0.1, 0, 0.5}, {0.1, 0, -0.2}});
   chain.compute_force();
   LAB_EXPECT_FORCE(chain.particles().get_force(1), glm::dvec3(0, 0, -4), two_masses_tolerance,
-                   "Q5: a spring pulls BOTH of its ends (Newton's third law): the stretched "
-                   "second spring pulls mass 2 up by 4 N and mass 1 down by 4 N, while the first "
-                   "spring, at its rest length, adds nothing",
-                   "Q5: the second spring pushes mass 1 up instead of pulling it down (the force "
-                   "has the wrong sign): a stretched spring pulls its two ends towards each "
-                   "other, with opposite forces (Newton's third law)");
+                   tr("Q5: a spring pulls BOTH of its ends (Newton's third law): the stretched "
+                      "second spring pulls mass 2 up by 4 N and mass 1 down by 4 N, while the "
+                      "first spring, at its rest length, adds nothing"),
+                   tr("Q5: the second spring pushes mass 1 up instead of pulling it down (the "
+                      "force has the wrong sign): a stretched spring pulls its two ends towards "
+                      "each other, with opposite forces (Newton's third law)"));
 }
 
 // Four masses in a zigzag, K = 30; every spring acts on both of its ends, so mass i feels
@@ -73,15 +73,18 @@ TEST(Q5CoupledSprings, EveryMassFeelsTheSpringsAboveAndBelowIt) {
       expected += spring_force(p[i], p[i + 1], K, L0);  // spring i+1, from below
     LAB_EXPECT_FORCE(chain.particles().get_force(std::size_t(i)), expected,
                      2 * K * lab::float_rounding,
-                     "Q5: in a chain of 4 masses, mass " + std::to_string(i) +
-                         " should feel the spring above it" +
-                         (i < 4 ? std::string(" and the one below it") : std::string()) +
-                         " (equation 2 on each)",
-                     "Q5: in a chain of 4 masses, mass " + std::to_string(i) +
-                         " feels the force of its springs with the wrong sign: each spring "
-                         "should pull it towards its neighbour when stretched, and push it away "
-                         "when compressed (equation 2: spring_force(a, b, K, L0) is the force "
-                         "on a)");
+                     i < 4 ? format(tr("Q5: in a chain of 4 masses, mass %d should feel the "
+                                       "spring above it and the one below it (equation 2 on "
+                                       "each)"),
+                                    int(i))
+                           : format(tr("Q5: in a chain of 4 masses, mass %d should feel the "
+                                       "spring above it (equation 2)"),
+                                    int(i)),
+                     format(tr("Q5: in a chain of 4 masses, mass %d feels the force of its "
+                               "springs with the wrong sign: each spring should pull it towards "
+                               "its neighbour when stretched, and push it away when compressed "
+                               "(equation 2: spring_force(a, b, K, L0) is the force on a)"),
+                            int(i)));
   }
 }
 
@@ -104,13 +107,13 @@ TEST(Q5CoupledSprings, SecondStepMovesBothMassesOfTheSecondSpring) {
   const glm::dvec3 F1 = 20.0 * (0.5 - glm::length(d)) * d / glm::length(d);
   const double tolerance = lab::rounding(2 * 20.0 * dt + 1.0);
   LAB_EXPECT_FORCE(chain.particles().get_velocity(1), dt * F1, tolerance,
-                   "Q5: after two steps the second spring has stretched and should have started "
-                   "to move mass 1 sideways",
-                   "Q5: after two steps the second spring has stretched, and it pushes mass 1 "
-                   "away from mass 2 instead of pulling it (the force on mass 1 has the wrong "
-                   "sign)");
+                   tr("Q5: after two steps the second spring has stretched and should have "
+                      "started to move mass 1 sideways"),
+                   tr("Q5: after two steps the second spring has stretched, and it pushes mass 1 "
+                      "away from mass 2 instead of pulling it (the force on mass 1 has the wrong "
+                      "sign)"));
   LAB_EXPECT_VEC(chain.particles().get_velocity(2), glm::dvec3(1, -1, 0) - dt * F1, tolerance,
-                 "Q5: after two steps the second spring should have slowed mass 2");
+                 tr("Q5: after two steps the second spring should have slowed mass 2"));
 }
 
 }  // namespace

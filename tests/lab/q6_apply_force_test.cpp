@@ -68,9 +68,9 @@ TEST(Q6ApplyForce, VelocityIsDampedThenAcceleratedByForceOverMassPlusGravity) {
   set_force(cloth, 3, {4, -2, 6});
   cloth.apply_force();
   LAB_EXPECT_VEC(cloth.particles().get_velocity(3), glm::dvec3(1.15, 1.8, 2.15), step_tolerance,
-                 "Q6: speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g) with dt = 0.1, "
-                 "mu = 0.5, m = 2, g = (0, 0, -10), speed (1, 2, 3) and force (4, -2, 6). "
-                 "Are the forces and the damping used?");
+                 tr("Q6: speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g) with dt = 0.1, "
+                    "mu = 0.5, m = 2, g = (0, 0, -10), speed (1, 2, 3) and force (4, -2, 6). "
+                    "Are the forces and the damping used?"));
 }
 
 // Then vertices[k] += dt speed[k] with the NEW speed: p' = (0.5, 0.5, 0) + 0.1 (1.15, 1.8, 2.15).
@@ -89,12 +89,13 @@ TEST(Q6ApplyForce, PositionMovesWithTheNewVelocity) {
       lab::near(cloth.particles().get_position(3), p + 0.1 * speed, step_tolerance);
   LAB_EXPECT_VEC(cloth.particles().get_position(3), p + 0.1 * expected_speed, step_tolerance,
                  order_right && !lab::near(speed, expected_speed, step_tolerance)
-                     ? "Q6: the vertex moved by dt speed[k] with the speed just computed, as it "
-                       "should, but that speed is wrong (" +
-                           lab::text(speed) + " instead of " + lab::text(expected_speed) +
-                           "): see speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + g)"
-                     : std::string("Q6: vertices[k] += dt speed[k], with the speed just computed "
-                                   "(the handout's second loop)"));
+                     ? format(tr("Q6: the vertex moved by dt speed[k] with the speed just "
+                                 "computed, as it should, but that speed is wrong (%s instead of "
+                                 "%s): see speed[k] = (1 - dt mu) speed[k] + dt (forces[k] / m + "
+                                 "g)"),
+                              lab::text(speed).c_str(), lab::text(expected_speed).c_str())
+                     : std::string(tr("Q6: vertices[k] += dt speed[k], with the speed just "
+                                      "computed (the handout's second loop)")));
 }
 
 // Every vertex, not only the first: each gets its own force, F_k = (k, -k, 2k), from rest:
@@ -113,11 +114,11 @@ TEST(Q6ApplyForce, EveryVertexMovesUnderItsOwnForce) {
     const double s = double(k);
     const glm::dvec3 v = 0.1 * (glm::dvec3(s, -s, 2 * s) / 2.0 + glm::dvec3(0, 0, -10));
     LAB_EXPECT_VEC(cloth.particles().get_velocity(k), v, step_tolerance,
-                   "Q6: vertex " + std::to_string(k) +
-                       " should be accelerated by its own "
-                       "force forces[k] / m plus gravity");
+                   format(tr("Q6: vertex %zu should be accelerated by its own force forces[k] / "
+                             "m plus gravity"),
+                          std::size_t(k)));
     LAB_EXPECT_VEC(cloth.particles().get_position(k), start[k] + 0.1 * v, step_tolerance,
-                   "Q6: vertex " + std::to_string(k) + " should move by dt speed[k]");
+                   format(tr("Q6: vertex %zu should move by dt speed[k]"), std::size_t(k)));
   }
 }
 
@@ -130,9 +131,9 @@ TEST(Q6ApplyForce, FixedVerticesAreNeverUpdated) {
   set_force(cloth, 1, {100, 100, 100});
   cloth.apply_force();
   LAB_EXPECT_VEC(cloth.particles().get_position(1), p, 0.0,
-                 "Q6: a fixed vertex (is_fixed[k] == 1) must never move");
+                 tr("Q6: a fixed vertex (is_fixed[k] == 1) must never move"));
   LAB_EXPECT_VEC(cloth.particles().get_velocity(1), glm::dvec3(0.0), 0.0,
-                 "Q6: a fixed vertex keeps a zero speed");
+                 tr("Q6: a fixed vertex keeps a zero speed"));
 }
 
 // Without pins, springs at rest length and no ground, every vertex gets the same velocity and the
@@ -167,11 +168,11 @@ TEST(Q6ApplyForce, AFreeClothFallsWithTheDampedFreeFallOfOneParticle) {
   const double v_first = cloth.particles().velocity[3 * first + 2];
   const double z_first = cloth.particles().position[3 * first + 2];
   LAB_EXPECT_TRUE(wrong == 0,
-                  "Q6: a free cloth (no pins, no spring force, no ground) falls as one particle: "
-                  "after 100 steps of dt = 0.002 s with damping mu = 0.5, every vertex should "
-                  "move at v_z = (1 - dt mu) v_z - g0 dt and z = z + dt v_z")
-      << "; vertex " << first << " (" << wrong << " of " << cloth.particles().size()
-      << " vertices are wrong):"
+                  tr("Q6: a free cloth (no pins, no spring force, no ground) falls as one "
+                     "particle: after 100 steps of dt = 0.002 s with damping mu = 0.5, every "
+                     "vertex should move at v_z = (1 - dt mu) v_z - g0 dt and z = z + dt v_z"))
+      << format(tr("; vertex %zu (%zu of %zu vertices are wrong):"), std::size_t(first),
+                std::size_t(wrong), std::size_t(cloth.particles().size()))
       << (lab::near(v_first, v, tolerance) ? ""
                                            : "\n    v_z:" + lab::difference(v_first, v, tolerance))
       << (lab::near(z_first, z, tolerance) ? ""

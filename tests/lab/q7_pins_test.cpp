@@ -44,32 +44,34 @@ TEST(Q7Pins, TwoCornersArePinned) {
     p.grid_size = n;
     const spring_mesh cloth(p);
     const std::vector<std::size_t> pinned = pinned_vertices(cloth);
-    const std::string corners = "s(0, 0), s(N-1, 0), s(0, N-1) and s(N-1, N-1), indices 0, " +
-                                std::to_string(n - 1) + ", " + std::to_string(n * (n - 1)) +
-                                " and " + std::to_string(n * n - 1) +
-                                " for N = " + std::to_string(n);
+    const std::string corners =
+        format(tr("s(0, 0), s(N-1, 0), s(0, N-1) and s(N-1, N-1), indices 0, %d, %d and %d for "
+                  "N = %d"),
+               n - 1, n * (n - 1), n * n - 1, n);
     std::string names;
     for (std::size_t k : pinned)
       names += (names.empty() ? "" : ", ") + vertex(k, n);
     LAB_EXPECT_TRUE(!pinned.empty(),
-                    "Q7: no vertex of the cloth is pinned (N = " + std::to_string(n) +
-                        "): fix two of its corners, " + corners +
-                        " (mark them in particles_.is_fixed in load_model, or never update them "
-                        "in apply_force)");
+                    format(tr("Q7: no vertex of the cloth is pinned (N = %d): fix two of its "
+                              "corners, %s (mark them in particles_.is_fixed in load_model, or "
+                              "never update them in apply_force)"),
+                           n, corners.c_str()));
     if (pinned.empty())
       continue;
     std::size_t not_corner = pinned.size();
     for (std::size_t i = 0; i < pinned.size(); ++i)
       if (!is_corner(pinned[i], n) && not_corner == pinned.size())
         not_corner = i;
-    LAB_EXPECT_TRUE(not_corner == pinned.size(),
-                    "Q7: the pinned vertex " +
-                        (not_corner < pinned.size() ? vertex(pinned[not_corner], n) : "") +
-                        " is not a corner of the N = " + std::to_string(n) +
-                        " cloth; its corners are " + corners + " (k = ku + N kv)");
+    LAB_EXPECT_TRUE(
+        not_corner == pinned.size(),
+        format(tr("Q7: the pinned vertex %s is not a corner of the N = %d cloth; its "
+                  "corners are %s (k = ku + N kv)"),
+               (not_corner < pinned.size() ? vertex(pinned[not_corner], n) : "").c_str(), n,
+               corners.c_str()));
     LAB_EXPECT_TRUE(pinned.size() == 2,
-                    "Q7: pin exactly two corners of the cloth; at N = " + std::to_string(n) + ", " +
-                        std::to_string(pinned.size()) + " vertices are: " + names);
+                    format(tr("Q7: pin exactly two corners of the cloth; at N = %d, %zu vertices "
+                              "are: %s"),
+                           n, pinned.size(), names.c_str()));
   }
 }
 
@@ -80,7 +82,7 @@ TEST(Q7Pins, PinnedCornersStayExactlyInPlaceWhileTheClothHangs) {
   p.grid_size = 5;
   spring_mesh cloth(p);
   const std::vector<std::size_t> pinned = pinned_vertices(cloth);
-  LAB_ASSERT_TRUE(!pinned.empty(), "Q7: no vertex of the cloth is pinned: fix two corners");
+  LAB_ASSERT_TRUE(!pinned.empty(), tr("Q7: no vertex of the cloth is pinned: fix two corners"));
   std::vector<glm::dvec3> start;
   for (std::size_t k : pinned)
     start.push_back(cloth.particles().get_position(k));
@@ -88,10 +90,11 @@ TEST(Q7Pins, PinnedCornersStayExactlyInPlaceWhileTheClothHangs) {
     cloth.step();
   for (std::size_t i = 0; i < pinned.size(); ++i) {
     LAB_EXPECT_VEC(cloth.particles().get_position(pinned[i]), start[i], 0.0,
-                   "Q7: the pinned corner " + vertex(pinned[i], 5) +
-                       " moved while the cloth hangs (200 steps)");
-    LAB_EXPECT_VEC(cloth.particles().get_velocity(pinned[i]), glm::dvec3(0.0), 0.0,
-                   "Q7: the pinned corner " + vertex(pinned[i], 5) + " keeps a zero speed");
+                   format(tr("Q7: the pinned corner %s moved while the cloth hangs (200 steps)"),
+                          vertex(pinned[i], 5).c_str()));
+    LAB_EXPECT_VEC(
+        cloth.particles().get_velocity(pinned[i]), glm::dvec3(0.0), 0.0,
+        format(tr("Q7: the pinned corner %s keeps a zero speed"), vertex(pinned[i], 5).c_str()));
   }
 }
 
@@ -102,9 +105,10 @@ TEST(Q7Pins, PinsNoneLeavesEveryVertexFree) {
   spring_mesh cloth(p);
   for (std::size_t k = 0; k < cloth.particles().size(); ++k)
     LAB_EXPECT_TRUE(!cloth.particles().is_fixed[k],
-                    "Q7: with --pins none (parameters.pins == pin_mode::none) no vertex is "
-                    "pinned; " +
-                        vertex(k, 4) + " is (marked in is_fixed, or never moved by apply_force)");
+                    format(tr("Q7: with --pins none (parameters.pins == pin_mode::none) no vertex "
+                              "is pinned; %s is (marked in is_fixed, or never moved by "
+                              "apply_force)"),
+                           vertex(k, 4).c_str()));
 }
 
 }  // namespace

@@ -47,11 +47,13 @@ void move(spring_mesh& cloth, int ku, int kv, const glm::dvec3& p) {
 }
 
 // What a force of the wrong sign says: the springs of `family` push where they should pull.
+// (`family` and `vertex` already in the student's language.)
 std::string reversed(const std::string& family, const std::string& vertex) {
-  return "Q8, " + family + ": " + vertex +
-         " feels its springs with the wrong sign (pushed where a stretched spring pulls, and "
-         "pulled where a compressed one pushes): equation 2, spring_force(p_i, p_j, K, L0), is "
-         "the force ON p_i; which of the two is the vertex s(ku, kv)?";
+  return format(tr("Q8, %s: %s feels its springs with the wrong sign (pushed where a stretched "
+                   "spring pulls, and pulled where a compressed one pushes): equation 2, "
+                   "spring_force(p_i, p_j, K, L0), is the force ON p_i; which of the two is the "
+                   "vertex s(ku, kv)?"),
+                family.c_str(), vertex.c_str());
 }
 
 // The rounding of the force of `springs` springs of stiffness K between positions of size
@@ -71,16 +73,16 @@ TEST(Q8ComputeForce, StructuralSpringsPullAStretchedVertexBack) {
   move(cloth, 2, 1, {1.5, 0, 0});
   cloth.compute_force();
   const double side = 100.0 * (1 - std::sqrt(1.25)) / std::sqrt(1.25);
-  LAB_EXPECT_FORCE(force_on(cloth, 2, 1), glm::dvec3(-50 + side, 0, 0),
-                   force_tolerance(3, 100.0, 1.5),
-                   "Q8, structural springs: s(2, 1), pulled 0.5 m away from s(1, 1), should be "
-                   "pulled back by its structural springs to s(1, 1), s(2, 0) and s(2, 2). "
-                   "Without them the cloth does not hold together",
-                   reversed("structural springs", "s(2, 1), pulled 0.5 m away from s(1, 1),"));
+  LAB_EXPECT_FORCE(
+      force_on(cloth, 2, 1), glm::dvec3(-50 + side, 0, 0), force_tolerance(3, 100.0, 1.5),
+      tr("Q8, structural springs: s(2, 1), pulled 0.5 m away from s(1, 1), should "
+         "be pulled back by its structural springs to s(1, 1), s(2, 0) and s(2, 2). "
+         "Without them the cloth does not hold together"),
+      reversed(tr("structural springs"), tr("s(2, 1), pulled 0.5 m away from s(1, 1),")));
   LAB_EXPECT_FORCE(force_on(cloth, 1, 1), glm::dvec3(50, 0, 0), force_tolerance(4, 100.0, 1.5),
-                   "Q8, structural springs: s(1, 1) should feel the stretched spring to its "
-                   "neighbour s(ku+1, kv) = s(2, 1): a spring pulls both of its ends",
-                   reversed("structural springs", "s(1, 1)"));
+                   tr("Q8, structural springs: s(1, 1) should feel the stretched spring to its "
+                      "neighbour s(ku+1, kv) = s(2, 1): a spring pulls both of its ends"),
+                   reversed(tr("structural springs"), "s(1, 1)"));
 }
 
 // Shear only, K = 100, 3 x 3, S = 2: move the centre s(1, 1) to c = (0.3, 0.2, 0.4). It is joined
@@ -96,15 +98,15 @@ TEST(Q8ComputeForce, ShearSpringsHoldTheDiagonals) {
        {glm::dvec3(-1, -1, 0), glm::dvec3(1, -1, 0), glm::dvec3(1, 1, 0), glm::dvec3(-1, 1, 0)})
     expected += spring_force(c, corner, 100.0, L0);
   LAB_EXPECT_FORCE(force_on(cloth, 1, 1), expected, force_tolerance(4, 100.0, 1.5),
-                   "Q8, shear springs: the centre s(1, 1), moved off its place, should be held by "
-                   "its four diagonal springs to s(ku+-1, kv+-1) (rest length h sqrt 2). Without "
-                   "them the cloth collapses along its diagonals",
-                   reversed("shear springs", "the centre s(1, 1), moved off its place,"));
+                   tr("Q8, shear springs: the centre s(1, 1), moved off its place, should be held "
+                      "by its four diagonal springs to s(ku+-1, kv+-1) (rest length h sqrt 2). "
+                      "Without them the cloth collapses along its diagonals"),
+                   reversed(tr("shear springs"), tr("the centre s(1, 1), moved off its place,")));
   LAB_EXPECT_FORCE(force_on(cloth, 0, 0), spring_force(glm::dvec3(-1, -1, 0), c, 100.0, L0),
                    force_tolerance(1, 100.0, 1.5),
-                   "Q8, shear springs: the corner s(0, 0) should feel its one diagonal spring, to "
-                   "s(1, 1)",
-                   reversed("shear springs", "the corner s(0, 0)"));
+                   tr("Q8, shear springs: the corner s(0, 0) should feel its one diagonal spring, "
+                      "to s(1, 1)"),
+                   reversed(tr("shear springs"), tr("the corner s(0, 0)")));
 }
 
 // Bending only, K_bend = 7, 3 x 3, S = 2: lift s(2, 0) = (1, -1, 0) to (1, -1, 1). Its bending
@@ -118,14 +120,15 @@ TEST(Q8ComputeForce, BendingSpringsSkipOneVertex) {
   const double scale = 7.0 * (2 - std::sqrt(5.0)) / std::sqrt(5.0);
   LAB_EXPECT_FORCE(force_on(cloth, 2, 0), scale * glm::dvec3(2, -2, 2),
                    force_tolerance(2, 7.0, 1.5),
-                   "Q8, bending springs: s(2, 0), lifted out of the plane, should be pulled back "
-                   "by its bending springs to s(ku-2, kv) and s(ku, kv+2) (rest length 2h). "
-                   "Without them the cloth folds with no resistance, like paper",
-                   reversed("bending springs", "s(2, 0), lifted out of the plane,"));
+                   tr("Q8, bending springs: s(2, 0), lifted out of the plane, should be pulled "
+                      "back by its bending springs to s(ku-2, kv) and s(ku, kv+2) (rest length "
+                      "2h). Without them the cloth folds with no resistance, like paper"),
+                   reversed(tr("bending springs"), tr("s(2, 0), lifted out of the plane,")));
   LAB_EXPECT_FORCE(force_on(cloth, 0, 0), spring_force({-1, -1, 0}, {1, -1, 1}, 7.0, 2.0),
                    force_tolerance(2, 7.0, 1.5),
-                   "Q8, bending springs: s(0, 0) should feel the bending spring to s(ku+2, kv)",
-                   reversed("bending springs", "s(0, 0)"));
+                   tr("Q8, bending springs: s(0, 0) should feel the bending spring to "
+                      "s(ku+2, kv)"),
+                   reversed(tr("bending springs"), "s(0, 0)"));
 }
 
 // A 2 x 2 cloth, S = 1 (h = 1), all three families with different stiffnesses: lift s(1, 1) by
@@ -140,15 +143,15 @@ TEST(Q8ComputeForce, EachFamilyUsesItsOwnStiffness) {
                                 spring_force(p, position_of(cloth, 1, 0), 300.0, 1.0);
   const glm::dvec3 shear = spring_force(p, position_of(cloth, 0, 0), 70.0, std::sqrt(2.0));
   const double tolerance = force_tolerance(3, 300.0, 1.0);
-  const std::string family =
-      lab::reversed_part(force_on(cloth, 1, 1), structural + shear,
-                         {{"structural springs", structural}, {"shear springs", shear}}, tolerance);
+  const std::string family = lab::reversed_part(
+      force_on(cloth, 1, 1), structural + shear,
+      {{tr("structural springs"), structural}, {tr("shear springs"), shear}}, tolerance);
   LAB_EXPECT_FORCE(force_on(cloth, 1, 1), structural + shear, tolerance,
-                   family.empty() ? "Q8: with K_struct = 300 and K_shear = 70, s(1, 1) lifted by "
-                                    "0.5 m should feel two structural springs with K_struct and "
-                                    "one shear spring with K_shear"
-                                  : reversed(family, "s(1, 1), lifted by 0.5 m,"),
-                   reversed("every family", "s(1, 1), lifted by 0.5 m,"));
+                   family.empty() ? tr("Q8: with K_struct = 300 and K_shear = 70, s(1, 1) lifted "
+                                       "by 0.5 m should feel two structural springs with "
+                                       "K_struct and one shear spring with K_shear")
+                                  : reversed(family, tr("s(1, 1), lifted by 0.5 m,")),
+                   reversed(tr("every family"), tr("s(1, 1), lifted by 0.5 m,")));
 }
 
 // A corner has only the neighbours inside the grid: on a 4 x 4 cloth (S = 3, h = 1) with every
@@ -169,17 +172,18 @@ TEST(Q8ComputeForce, ACornerFeelsOnlyTheSpringsInsideTheGrid) {
                              spring_force(p, position_of(cloth, 0, 2), 20.0, 2.0);
   const glm::dvec3 expected = structural + shear + bending;
   const double tolerance = force_tolerance(5, 40.0, 2.5);
-  const std::string family = lab::reversed_part(
-      force_on(cloth, 0, 0), expected,
-      {{"structural springs", structural}, {"shear springs", shear}, {"bending springs", bending}},
-      tolerance);
+  const std::string family = lab::reversed_part(force_on(cloth, 0, 0), expected,
+                                                {{tr("structural springs"), structural},
+                                                 {tr("shear springs"), shear},
+                                                 {tr("bending springs"), bending}},
+                                                tolerance);
   LAB_EXPECT_FORCE(force_on(cloth, 0, 0), expected, tolerance,
                    family.empty()
-                       ? "Q8: the corner s(0, 0) has five springs: structural to s(1, 0) and "
-                         "s(0, 1), shear to s(1, 1), bending to s(2, 0) and s(0, 2); neighbours "
-                         "outside the grid (ku < 0, kv < 0) have none"
-                       : reversed(family, "the corner s(0, 0)"),
-                   reversed("every family", "the corner s(0, 0)"));
+                       ? tr("Q8: the corner s(0, 0) has five springs: structural to s(1, 0) and "
+                            "s(0, 1), shear to s(1, 1), bending to s(2, 0) and s(0, 2); "
+                            "neighbours outside the grid (ku < 0, kv < 0) have none")
+                       : reversed(family, tr("the corner s(0, 0)")),
+                   reversed(tr("every family"), tr("the corner s(0, 0)")));
 }
 
 // Spring forces come in opposite pairs along the line of their two vertices: on any shape their
@@ -200,16 +204,16 @@ TEST(Q8ComputeForce, SpringForcesSumToZeroAndExertNoTorque) {
     largest = glm::max(largest, glm::abs(f));
   }
   LAB_EXPECT_TRUE(largest.x + largest.y + largest.z > 1.0,
-                  "Q8: a deformed cloth with stiff springs should feel spring forces");
+                  tr("Q8: a deformed cloth with stiff springs should feel spring forces"));
   // Tolerance: the rounding of every spring force at both of its ends (80 structural ends of
   // K = 500, 64 shear ends of K = 200, 60 bending ends of K = 50; positions of size 1).
   const double tolerance = lab::rounding(80 * 500.0 + 64 * 200.0 + 60 * 50.0);
   LAB_EXPECT_VEC(sum, glm::dvec3(0.0), tolerance,
-                 "Q8: the spring forces should sum to zero (each spring pulls its two ends with "
-                 "opposite forces): is some spring counted on one end only, or twice?");
+                 tr("Q8: the spring forces should sum to zero (each spring pulls its two ends "
+                    "with opposite forces): is some spring counted on one end only, or twice?"));
   LAB_EXPECT_VEC(torque, glm::dvec3(0.0), tolerance,
-                 "Q8: the spring forces should exert no total torque (each pair lies along its "
-                 "spring)");
+                 tr("Q8: the spring forces should exert no total torque (each pair lies along its "
+                    "spring)"));
 }
 
 // At rest, every spring at its rest length (h, h sqrt 2 or 2h): no force anywhere, corners,
@@ -221,10 +225,10 @@ TEST(Q8ComputeForce, AClothAtRestFeelsNoSpringForce) {
   // length written out, h sqrt 2, differs from the measured one by that rounding only).
   LAB_EXPECT_EVERY_VEC(k, 5 * 5, force_on(cloth, int(k % 5), int(k / 5)), glm::dvec3(0.0),
                        force_tolerance(12, 500.0, 1.0),
-                       "Q8: on the flat cloth at rest every spring has its rest length (h for a "
-                       "structural spring, h sqrt 2 for a shear one, 2h for a bending one): s(" +
-                           std::to_string(int(k % 5)) + ", " + std::to_string(int(k / 5)) +
-                           ") should feel no spring force");
+                       format(tr("Q8: on the flat cloth at rest every spring has its rest length "
+                                 "(h for a structural spring, h sqrt 2 for a shear one, 2h for a "
+                                 "bending one): s(%d, %d) should feel no spring force"),
+                              int(k % 5), int(k / 5)));
 }
 
 }  // namespace

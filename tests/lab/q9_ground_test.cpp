@@ -43,27 +43,35 @@ void expect_contact_velocity(const glm::dvec3& before, const glm::dvec3& after, 
   const glm::dvec3 slid(after.x, after.y, 0.0);
   LAB_EXPECT_VEC(
       slid, friction_factor * tangential, friction_tolerance * glm::length(tangential) + rounding,
-      "Q9" + where +
-          ": a vertex in contact with the ground slides with a fluid "
-          "friction of rate mu_g = 2 (like the damping of equation 3, along the plane): "
-          "over dt = 0.01 s its (v_x, v_y) = " +
-          lab::text(tangential) +
-          " shrinks by exp(-mu_g dt) = 0.9802, or by the first order 1 - mu_g dt = 0.98");
+      format(tr("Q9%s: a vertex in contact with the ground slides with a fluid friction of rate "
+                "mu_g = 2 (like the damping of equation 3, along the plane): over dt = 0.01 s its "
+                "(v_x, v_y) = %s shrinks by exp(-mu_g dt) = 0.9802, or by the first order 1 - "
+                "mu_g dt = 0.98"),
+             where.c_str(), lab::text(tangential).c_str()));
   if (before.z < 0) {
     LAB_EXPECT_TRUE(lab::near(after.z, 0.0, rounding),
-                    "Q9" + where + ": a vertex that falls onto the ground (v_z = " +
-                        lab::number(before.z) + ") stops falling: its v_z must become 0, " +
-                        (after.z < 0 ? "not stay negative: it would go on into the ground"
-                                     : "not positive: the plane holds it, it does not throw it "
-                                       "off (no bounce)"))
+                    after.z < 0
+                        ? format(tr("Q9%s: a vertex that falls onto the ground (v_z = %s) stops "
+                                    "falling: its v_z must become 0, not stay negative: it would "
+                                    "go on into the ground"),
+                                 where.c_str(), lab::number(before.z).c_str())
+                        : format(tr("Q9%s: a vertex that falls onto the ground (v_z = %s) stops "
+                                    "falling: its v_z must become 0, not positive: the plane "
+                                    "holds it, it does not throw it off (no bounce)"),
+                                 where.c_str(), lab::number(before.z).c_str()))
         << lab::difference(after.z, 0.0, rounding);
   } else {
     LAB_EXPECT_TRUE(lab::near(after.z, before.z, rounding) || lab::near(after.z, 0.0, rounding),
-                    "Q9" + where + ": a vertex below the ground that already moves up (v_z = " +
-                        lab::number(before.z) + ") may keep its v_z or stop (v_z = 0), " +
-                        (after.z < 0 ? "but not be sent down into the ground"
-                                     : "but the friction slows its sliding only"))
-        << "; got v_z = " << lab::number(after.z, 17);
+                    after.z < 0
+                        ? format(tr("Q9%s: a vertex below the ground that already moves up "
+                                    "(v_z = %s) may keep its v_z or stop (v_z = 0), but not be "
+                                    "sent down into the ground"),
+                                 where.c_str(), lab::number(before.z).c_str())
+                        : format(tr("Q9%s: a vertex below the ground that already moves up "
+                                    "(v_z = %s) may keep its v_z or stop (v_z = 0), but the "
+                                    "friction slows its sliding only"),
+                                 where.c_str(), lab::number(before.z).c_str()))
+        << format(tr("; got v_z = %s"), lab::number(after.z, 17).c_str());
   }
 }
 
@@ -86,19 +94,20 @@ TEST(Q9Ground, ContactRuleMatchesTheHandComputation) {
   apply_ground_contact(-1.0, 2.0, 0.01, particles);
   const double rounding = lab::rounding(5.0);  // values of size 5 at most
   LAB_EXPECT_VEC(particles.get_position(0), glm::dvec3(0.1, 0.2, -1.0), rounding,
-                 "Q9: a vertex below the plane z = -1 should be put back on it (z = -1), its x "
-                 "and y unchanged");
+                 tr("Q9: a vertex below the plane z = -1 should be put back on it (z = -1), its "
+                    "x and y unchanged"));
   expect_contact_velocity({2, -4, -3}, particles.get_velocity(0), rounding, "");
   LAB_EXPECT_VEC(particles.get_position(1), glm::dvec3(0, 0, -0.5), 0.0,
-                 "Q9: a vertex above the ground is not touched");
+                 tr("Q9: a vertex above the ground is not touched"));
   LAB_EXPECT_VEC(particles.get_velocity(1), glm::dvec3(1, 1, -1), 0.0,
-                 "Q9: a vertex above the ground keeps its velocity (no friction without contact)");
+                 tr("Q9: a vertex above the ground keeps its velocity (no friction without "
+                    "contact)"));
   LAB_EXPECT_VEC(particles.get_position(2), glm::dvec3(0, 0, -1.0), rounding,
-                 "Q9: a vertex below the plane that already moves up is put back on it too: no "
-                 "vertex may stay below it");
+                 tr("Q9: a vertex below the plane that already moves up is put back on it too: "
+                    "no vertex may stay below it"));
   expect_contact_velocity({1, 0.5, 1}, particles.get_velocity(2), rounding, "");
   LAB_EXPECT_VEC(particles.get_position(3), glm::dvec3(0, 0, -2), 0.0,
-                 "Q9: a fixed vertex is never moved, not even by the ground");
+                 tr("Q9: a fixed vertex is never moved, not even by the ground"));
 }
 
 // A cloth falls onto a ground 0.3 m below it: it reaches it (a free fall of 0.3 m takes 0.25 s,
@@ -114,14 +123,14 @@ TEST(Q9Ground, AFallingClothNeverEndsAStepUnderTheGround) {
     cloth.step();
     for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
       const double z = cloth.particles().position[3 * k + 2];
-      LAB_ASSERT_TRUE(z >= -0.3 - rounding, "Q9: vertex " + std::to_string(k) +
-                                                " is under the ground z = -0.3 at step " +
-                                                std::to_string(s + 1))
+      LAB_ASSERT_TRUE(
+          z >= -0.3 - rounding,
+          format(tr("Q9: vertex %zu is under the ground z = -0.3 at step %d"), k, s + 1))
           << " (z = " << lab::number(z, 17) << ")";
       touched = touched || lab::near(z, -0.3, rounding);
     }
   }
-  LAB_EXPECT_TRUE(touched, "Q9: the cloth should have reached the ground");
+  LAB_EXPECT_TRUE(touched, tr("Q9: the cloth should have reached the ground"));
 }
 
 using Q9GpuGround = lab::OffscreenGl;
@@ -161,18 +170,18 @@ TEST_F(Q9GpuGround, TheGpuContactRuleMatchesTheHandComputation) {
   gpu.read_state(cloth);
   const double tolerance = lab::rounding(5.0);  // single precision, values of size 5 at most
   LAB_EXPECT_VEC(particles.get_position(0), glm::dvec3(0.12, 0.16, -1.0), tolerance,
-                 "Q9 (GPU): a particle that moves below the plane z = -1 should be put back on "
-                 "it (z = -1), its x and y as the integrator left them");
+                 tr("Q9 (GPU): a particle that moves below the plane z = -1 should be put back "
+                    "on it (z = -1), its x and y as the integrator left them"));
   expect_contact_velocity({2, -4, -3}, particles.get_velocity(0), tolerance, " (GPU)");
   LAB_EXPECT_VEC(particles.get_position(1), glm::dvec3(0.01, 0.01, -0.51), tolerance,
-                 "Q9 (GPU): a particle above the ground only moves by dt v");
+                 tr("Q9 (GPU): a particle above the ground only moves by dt v"));
   LAB_EXPECT_VEC(particles.get_velocity(1), glm::dvec3(1, 1, -1), tolerance,
-                 "Q9 (GPU): a particle above the ground keeps its velocity (no friction)");
+                 tr("Q9 (GPU): a particle above the ground keeps its velocity (no friction)"));
   LAB_EXPECT_VEC(particles.get_position(2), glm::dvec3(0.01, 0.005, -1.0), tolerance,
-                 "Q9 (GPU): a particle below the ground that moves up is put back on it too");
+                 tr("Q9 (GPU): a particle below the ground that moves up is put back on it too"));
   expect_contact_velocity({1, 0.5, 1}, particles.get_velocity(2), tolerance, " (GPU)");
   LAB_EXPECT_VEC(particles.get_position(3), glm::dvec3(0, 0, -2), 0.0,
-                 "Q9 (GPU): a pinned particle is never moved, not even by the ground");
+                 tr("Q9 (GPU): a pinned particle is never moved, not even by the ground"));
 }
 
 // With the ground off (ground_enabled false), a GPU particle goes through the plane: the 2 x 2
@@ -196,10 +205,11 @@ TEST_F(Q9GpuGround, NoGroundWhenItIsOff) {
   gpu.step(p);
   gpu.read_state(cloth);
   LAB_EXPECT_VEC(cloth.particles().get_position(0), glm::dvec3(0.12, 0.16, -1.53), 1e-6,
-                 "Q9 (GPU): with the ground off (ground_enabled false) a particle goes through "
-                 "the plane z = -1");
+                 tr("Q9 (GPU): with the ground off (ground_enabled false) a particle goes "
+                    "through the plane z = -1"));
   LAB_EXPECT_VEC(cloth.particles().get_velocity(0), glm::dvec3(2, -4, -3), 1e-6,
-                 "Q9 (GPU): with the ground off a particle keeps its velocity (no friction)");
+                 tr("Q9 (GPU): with the ground off a particle keeps its velocity (no "
+                    "friction)"));
 }
 
 // The GPU cloth falls onto a ground 0.3 m below it: it reaches it and no particle is ever seen
@@ -223,14 +233,15 @@ TEST_F(Q9GpuGround, AFallingGpuClothNeverEndsAStepUnderTheGround) {
     gpu.read_state(cloth);
     for (std::size_t k = 0; k < cloth.particles().size(); ++k) {
       const double z = cloth.particles().position[3 * k + 2];
-      LAB_ASSERT_TRUE(z >= ground - rounding, "Q9 (GPU): particle " + std::to_string(k) +
-                                                  " is under the ground z = -0.3 after " +
-                                                  std::to_string(s + 1) + " steps")
+      LAB_ASSERT_TRUE(z >= ground - rounding,
+                      format(tr("Q9 (GPU): particle %zu is under the ground z = -0.3 after %d "
+                                "steps"),
+                             std::size_t(k), s + 1))
           << " (z = " << lab::number(z, 17) << ")";
       touched = touched || lab::near(z, ground, rounding);
     }
   }
-  LAB_EXPECT_TRUE(touched, "Q9 (GPU): the cloth should have reached the ground");
+  LAB_EXPECT_TRUE(touched, tr("Q9 (GPU): the cloth should have reached the ground"));
 }
 
 }  // namespace

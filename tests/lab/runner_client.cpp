@@ -83,23 +83,23 @@ void close_fd(int& fd) {
 std::string signal_words(int signal_number) {
   switch (signal_number) {
     case SIGSEGV:
-      return "segmentation fault (an index outside an array? a pointer to nothing?)";
+      return tr("segmentation fault (an index outside an array? a pointer to nothing?)");
     case SIGABRT:
-      return "aborted (a failed assert, or an exception that nothing caught)";
+      return tr("aborted (a failed assert, or an exception that nothing caught)");
     case SIGFPE:
-      return "arithmetic error (an integer division by zero?)";
+      return tr("arithmetic error (an integer division by zero?)");
     case SIGBUS:
-      return "bus error (memory that is not there)";
+      return tr("bus error (memory that is not there)");
     case SIGILL:
-      return "illegal instruction";
+      return tr("illegal instruction");
     case SIGKILL:
-      return "killed (too much memory? a limit of the sandbox?)";
+      return tr("killed (too much memory? a limit of the sandbox?)");
     case SIGXCPU:
-      return "stopped: it used more processor time than allowed";
+      return tr("stopped: it used more processor time than allowed");
     case SIGXFSZ:
-      return "stopped: it wrote a file larger than allowed";
+      return tr("stopped: it wrote a file larger than allowed");
     case SIGTERM:
-      return "terminated";
+      return tr("terminated");
     default:
       return std::string("signal ") + std::to_string(signal_number) + " (" +
              strsignal(signal_number) + ")";
@@ -130,7 +130,7 @@ bool check_unreported(bool ok) {
     return false;
   }
   if (!told_more_checks) {
-    std::printf("(more checks of this test fail; only the first %d are shown)\n",
+    std::printf(tr("(more checks of this test fail; only the first %d are shown)\n"),
                 max_reported_checks);
     told_more_checks = true;
   }
@@ -199,6 +199,7 @@ bool parse_word_array(std::string_view json, std::vector<std::string>& words, st
     }
   };
   const auto bad = [&](const char* why) {
+    // (not translated: the grader's setting CLOTHLAB_LAB_SANDBOX, which a teacher reads)
     error = std::string(why) + " at character " + std::to_string(i + 1);
     words.clear();
     return false;
@@ -311,6 +312,7 @@ bool runner::start(std::string& error) {
   if (sandbox != nullptr && *sandbox != '\0') {
     std::string why;
     if (!parse_word_array(sandbox, words, why)) {
+      // (not translated: the grader's setting, which a teacher reads)
       error = "CLOTHLAB_LAB_SANDBOX is not a JSON array of strings (" + why + ")";
       return false;
     }
@@ -327,7 +329,7 @@ bool runner::start(std::string& error) {
   // Plain socketpair and pipe (POSIX: macOS has neither SOCK_CLOEXEC nor pipe2); high_fd moves
   // each end at once to a close-on-exec descriptor.
   if (::socketpair(AF_UNIX, SOCK_STREAM, 0, pair) != 0 || ::pipe(out) != 0) {
-    error = std::string("no socket or pipe: ") + std::strerror(errno);
+    error = format(tr("no socket or pipe: %s"), std::strerror(errno));
     return false;
   }
   int mine = high_fd(pair[0]), theirs = high_fd(pair[1]);
@@ -361,7 +363,7 @@ bool runner::start(std::string& error) {
   if (spawned != 0) {
     close_fd(mine);
     close_fd(out_read);
-    error = "cannot start " + words.front() + ": " + std::strerror(spawned);
+    error = format(tr("cannot start %s: %s"), words.front().c_str(), std::strerror(spawned));
     return false;
   }
   pid_ = pid;
@@ -395,7 +397,8 @@ bool runner::drain_output(std::size_t& total) {
       const std::size_t shown = std::min(n, shown_output_per_test - output_this_test_);
       std::fwrite(chunk, 1, shown, stdout);
       if (output_this_test_ + shown >= shown_output_per_test)
-        std::printf("\n[the rest of what the student's code printed in this test is not shown]\n");
+        std::printf("\n%s\n",
+                    tr("[the rest of what the student's code printed in this test is not shown]"));
       std::fflush(stdout);
     }
     output_this_test_ += n;
@@ -438,20 +441,22 @@ int runner::wait_for_end(int milliseconds) {
 
 std::string runner::ending(int status) const {
   if (status == -1)
-    return "closed its channel to the test but did not end";
+    return tr("closed its channel to the test but did not end");
   if (WIFSIGNALED(status))
-    return "crashed: " + signal_words(WTERMSIG(status));
+    return format(tr("crashed: %s"), signal_words(WTERMSIG(status)).c_str());
   const int code = WEXITSTATUS(status);
   // A sandbox (bubblewrap, a shell) reports its program's signal n as the exit status 128 + n.
   if (sandboxed_ && code > 128 && code < 128 + 65)
-    return "crashed: " + signal_words(code - 128);
-  return "ended the program (exit status " + std::to_string(code) +
-         ") before answering: does the code call exit(), or return from a place that ends it?";
+    return format(tr("crashed: %s"), signal_words(code - 128).c_str());
+  return format(tr("ended the program (exit status %d) before answering: does the code call "
+                   "exit(), or return from a place that ends it?"),
+                code);
 }
 
 void runner::fail(std::string_view operation, const std::string& reason) {
   const std::string message =
-      current_question() + ": the student's code, in " + std::string(operation) + ", " + reason;
+      format(tr("%s: the student's code, in %s, %s"), current_question().c_str(),
+             std::string(operation).c_str(), reason.c_str());
   GTEST_NONFATAL_FAILURE_(message.c_str());
   failed_in_test_ = true;
 }
@@ -488,7 +493,7 @@ std::optional<std::string> runner::ask(std::string_view operation, const std::st
     kill_and_reap();  // what is left of an earlier runner
     std::string error;
     if (!start(error)) {
-      fail(operation, "could not be started: " + error);
+      fail(operation, format(tr("could not be started: %s"), error.c_str()));
       return std::nullopt;
     }
   }
@@ -529,18 +534,20 @@ std::optional<std::string> runner::ask(std::string_view operation, const std::st
         lab_protocol::reader in(std::string_view(line).substr(6));
         const std::string what = in.text(4096);
         if (in.ok() && in.at_end()) {
-          fail(operation, "threw an exception: " + excerpt(what));
+          fail(operation, format(tr("threw an exception: %s"), excerpt(what).c_str()));
           return std::nullopt;
         }
       }
       kill_and_reap();
-      fail(operation, "answered something that is not the runner's answer ('" + excerpt(line) +
-                          "'): does it write to the runner's file descriptor 3?");
+      fail(operation, format(tr("answered something that is not the runner's answer ('%s'): "
+                                "does it write to the runner's file descriptor 3?"),
+                             excerpt(line).c_str()));
       return std::nullopt;
     }
     if (answer.size() > answer_limit) {
       kill_and_reap();
-      fail(operation, "sent more than 64 MB without ending its answer: not the runner's answer");
+      fail(operation,
+           tr("sent more than 64 MB without ending its answer: not the runner's answer"));
       return std::nullopt;
     }
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
@@ -548,9 +555,9 @@ std::optional<std::string> runner::ask(std::string_view operation, const std::st
                           .count();
     if (left <= 0) {
       kill_and_reap();
-      fail(operation, std::string("did not answer within ") + timeout_text +
-                          " s: an endless loop (a loop whose end condition never holds)? "
-                          "Stopped");
+      fail(operation, format(tr("did not answer within %s s: an endless loop (a loop whose end "
+                                "condition never holds)? Stopped"),
+                             timeout_text));
       return std::nullopt;
     }
     pollfd fds[3];
@@ -566,13 +573,14 @@ std::optional<std::string> runner::ask(std::string_view operation, const std::st
       if (errno == EINTR)
         continue;
       kill_and_reap();
-      fail(operation, std::string("could not be waited for: ") + std::strerror(errno));
+      fail(operation, format(tr("could not be waited for: %s"), std::strerror(errno)));
       return std::nullopt;
     }
     if (output_slot >= 0 && fds[output_slot].revents != 0 && !drain_output(printed)) {
       kill_and_reap();
-      fail(operation, "printed more than " + size_in_words(flood_limit()) +
-                          " in one test: a print in a loop that runs every step? Stopped");
+      fail(operation, format(tr("printed more than %s in one test: a print in a loop that runs "
+                                "every step? Stopped"),
+                             size_in_words(flood_limit()).c_str()));
       return std::nullopt;
     }
     if ((fds[0].revents & POLLOUT) != 0) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/i18n.hpp"
 #include "protocol.hpp"
 #include "runner_client.hpp"
 
@@ -38,14 +39,14 @@ std::optional<proto::particle_arrays> state_of(const std::string& answer, std::s
   proto::reader in(answer);
   proto::particle_arrays state = proto::read_particles(in, max_particles);
   if (!in.ok() || !in.at_end()) {
-    wrong_answer(operation, "answered a state that cannot be read");
+    wrong_answer(operation, tr("answered a state that cannot be read"));
     return std::nullopt;
   }
   if (state.is_fixed.size() != count || state.grid_size != grid_size) {
     wrong_answer(
         operation,
-        "left " + std::to_string(state.is_fixed.size()) + " particles (grid size " +
-            std::to_string(state.grid_size) + ") where there should be " + std::to_string(count) +
+        format(tr("left %zu particles (grid size %d) where there should be %zu"),
+               state.is_fixed.size(), int(state.grid_size), std::size_t(count)) +
             (grid_size > 0 ? " (N x N, N = " + std::to_string(grid_size) + ")" : std::string()));
     return std::nullopt;
   }
@@ -73,7 +74,7 @@ spring_mesh::spring_mesh(const cloth_parameters& p) : parameters(p), id_(next_id
   std::string request = "cloth";
   proto::put(request, id_);
   proto::put_struct(request, parameters);
-  const char* operation = "the spring_mesh constructor (load_model)";
+  const char* operation = tr("the spring_mesh constructor (load_model)");
   if (const auto answer = ask(operation, request))
     if (auto state = state_of(*answer, particles_.size(), grid_size_, operation))
       take(particles_, std::move(*state));
@@ -87,7 +88,7 @@ spring_mesh::spring_mesh(const spring_mesh& other)
   std::string request = "copy";
   proto::put(request, id_);
   request += ' ' + other.request_words();
-  ask("a copy of a spring_mesh", request);
+  ask(tr("a copy of a spring_mesh"), request);
 }
 
 std::string spring_mesh::request_words() const {
@@ -142,7 +143,7 @@ std::vector<std::vector<spring>> spring_mesh::springs() const {
     }
   }
   if (!in.ok() || !in.at_end()) {
-    wrong_answer(operation, "answered a list of springs that cannot be read");
+    wrong_answer(operation, tr("answered a list of springs that cannot be read"));
     return std::vector<std::vector<spring>>(3);
   }
   return lists;
@@ -171,7 +172,7 @@ coupled_springs::coupled_springs(const coupled_springs_parameters& p)
   std::string request = "chain";
   proto::put(request, id_);
   proto::put_struct(request, parameters);
-  const char* operation = "the coupled_springs constructor (load_model)";
+  const char* operation = tr("the coupled_springs constructor (load_model)");
   if (const auto answer = ask(operation, request))
     if (auto state = state_of(*answer, count, 0, operation))
       take(particles_, std::move(*state));
@@ -200,17 +201,17 @@ bool gpu_cloth::load(const spring_mesh& cloth, std::string& error) {
   std::string request = "gpu_load";
   proto::put(request, id_);
   request += ' ' + cloth.request_words();
-  const char* operation = "gpu_cloth::load (the GPU programs, shaders/)";
+  const char* operation = tr("gpu_cloth::load (the GPU programs, shaders/)");
   const auto answer = ask(operation, request);
   if (!answer) {
-    error = "(the runner did not answer)";
+    error = tr("(the runner did not answer)");
     return false;
   }
   proto::reader in(*answer);
   const long long loaded = in.integer(0, 1);
   error = in.text(64 * 1024);
   if (!in.ok() || !in.at_end()) {
-    wrong_answer(operation, "answered something that cannot be read");
+    wrong_answer(operation, tr("answered something that cannot be read"));
     return false;
   }
   return loaded == 1;

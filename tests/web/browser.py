@@ -103,11 +103,13 @@ def chromium_arguments(width, height, profile):
 
 
 class page_session:
-    """One chromium, one tab, on `url` (or on `site` served for the session)."""
+    """One chromium, one tab, on `url` (or on `site` served for the session, at `path` there:
+    "index.html?lang=fr"); `arguments`: chromium's own, added ("--lang=fr-FR")."""
 
-    def __init__(self, site=None, url=None, width=1280, height=800, timeout=120):
+    def __init__(self, site=None, url=None, width=1280, height=800, timeout=120, path="",
+                 arguments=()):
         self.site, self.url, self.width, self.height = site, url, width, height
-        self.timeout = timeout
+        self.timeout, self.path, self.arguments = timeout, path, list(arguments)
         self._stack = contextlib.ExitStack()
 
     def __enter__(self):
@@ -123,7 +125,7 @@ class page_session:
     def _start(self):
         chromium, driver = find_browser()
         if self.url is None:
-            self.url = self._stack.enter_context(static_server(self.site))
+            self.url = self._stack.enter_context(static_server(self.site)) + self.path
         profile = self._stack.enter_context(tempfile.TemporaryDirectory(prefix="clothlab-web-"))
         port = free_port()
         log = open(os.path.join(profile, "chromedriver.log"), "w")
@@ -137,7 +139,8 @@ class page_session:
                         "goog:chromeOptions": {
                             "binary": chromium,
                             "args": chromium_arguments(self.width, self.height,
-                                                       os.path.join(profile, "chromium"))},
+                                                       os.path.join(profile, "chromium"))
+                            + self.arguments},
                         "goog:loggingPrefs": {"browser": "ALL"}}
         answer = self._call("POST", "/session",
                             {"capabilities": {"alwaysMatch": capabilities}})

@@ -22,6 +22,7 @@
 #include <string_view>
 
 #include "core/coupled_springs.hpp"
+#include "core/i18n.hpp"
 #include "core/particle_system.hpp"
 #include "core/spring_mesh.hpp"
 #include "gl/gl_context.hpp"
@@ -66,10 +67,9 @@ void put_particles(std::string& line, int grid_size, const particle_system& part
   const std::size_t n = particles.size();
   if (particles.position.size() != 3 * n || particles.velocity.size() != 3 * n ||
       particles.force.size() != 3 * n)
-    throw std::length_error(
-        "the particle arrays position, velocity and force should hold 3n "
-        "numbers each for n = " +
-        std::to_string(n) + " particles");
+    throw std::length_error(format(tr("the particle arrays position, velocity and force should "
+                                      "hold 3n numbers each for n = %zu particles"),
+                                   n));
   proto::put_particles(line, grid_size, particles.position, particles.velocity, particles.force,
                        particles.is_fixed);
 }
@@ -103,7 +103,7 @@ gl_context& context(objects& o) {
     std::string error;
     o.context = create_offscreen_context(16, 16, error);
     if (!o.context)
-      throw std::runtime_error("no off-screen OpenGL context: " + error);
+      throw std::runtime_error(format(tr("no off-screen OpenGL context: %s"), error.c_str()));
   }
   return *o.context;
 }
@@ -238,11 +238,12 @@ bool write_all(int fd, std::string_view bytes) {
 
 int main() {
   using namespace clothlab;
+  start_messages();  // the student's language: the GPU programs' errors, the runner's own
   const int fd = lab_protocol::channel_fd;
   if (::fcntl(fd, F_GETFD) == -1) {
     std::fprintf(stderr,
-                 "lab_runner: runs the student's code for the question tests (lab_q5_tests ...), "
-                 "which start it with their requests on file descriptor %d\n",
+                 tr("lab_runner: runs the student's code for the question tests (lab_q5_tests "
+                    "...), which start it with their requests on file descriptor %d\n"),
                  fd);
     return 2;
   }

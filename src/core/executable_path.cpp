@@ -1,4 +1,4 @@
-#include "gl/executable_path.hpp"
+#include "core/executable_path.hpp"
 
 #if defined(__APPLE__)
 #include <mach-o/dyld.h>
