@@ -96,13 +96,15 @@ void cloth_parallel::step_xpbd(const cloth_parameters& p) {
       if (!fixed[k])
         velocity[k] = (position[k] - x_prev[k]) / h;
     }
+    // 4. The contacts over h, as the readable path makes them (xpbd.hpp), on one thread.
+#pragma omp single
+    {
+      if (p.sphere.enabled)
+        apply_sphere_contact(p.sphere, h, state);
+      if (p.ground_enabled)
+        apply_ground_contact(p.ground_height, p.ground_friction, h, state);
+    }
   }
-
-  // The constraints of the step, as the readable path's apply_constraints: the sphere, the ground.
-  if (p.sphere.enabled)
-    apply_sphere_contact(p.sphere, d.time_step, state);
-  if (p.ground_enabled)
-    apply_ground_contact(p.ground_height, p.ground_friction, d.time_step, state);
 
   double *x = x_[current_].data(), *y = y_[current_].data(), *z = z_[current_].data();
   for (std::ptrdiff_t k = 0; k < count; ++k) {
