@@ -148,6 +148,7 @@ class Sandbox:
         self.root = os.geteuid() == 0
         self.uid, self.uid_lock = sandbox_uid() if self.root else (os.geteuid(), None)
         self.sized = False  # the scratch is a tmpfs of limits.scratch bytes
+        self.shared_folders = None  # where every user may write (the fallback's leftovers)
         self.cgroup = None
         self.kind, self.description = "none", "none (--no-sandbox): the tests run as the grader"
         self.prepare_scratch()
@@ -270,12 +271,15 @@ class Sandbox:
 
     def remove_leftovers(self):
         """In the fallback, the submissions share their user and the machine's /tmp, /var/tmp,
-        /dev/shm and System V IPC: what one left there (a file, a shared memory segment) is
+        /dev/shm, /run/lock, every other folder that every user may write, and System V IPC:
+        what one left there (a file, a shared memory segment) is
         removed before the next one runs, so that nothing of one reaches another. (Bubblewrap
         gives each its own /tmp, /dev and IPC namespace.)"""
         if self.kind != "user" or not self.root:
             return
-        for top in ("/tmp", "/var/tmp", "/dev/shm"):
+        if self.shared_folders is None:
+            self.shared_folders = world_writable_folders()
+        for top in self.shared_folders:
             remove_owned(Path(top), self.uid, depth=2)
         for kind, flag, column in (("shm", "-m", 7), ("sem", "-s", 4), ("msg", "-q", 7)):
             try:
@@ -375,6 +379,36 @@ class Sandbox:
             stdin=subprocess.DEVNULL,
             preexec_fn=self.limit(seconds + 2, file_size or self.limits.file_size))
         return wait_then_end(process, seconds)
+
+
+def world_writable_folders(depth=4):
+    """The folders every user may write, /tmp, /var/tmp, /dev/shm and /run/lock first, then
+    those found `depth` levels down from / (not in /proc and /sys; not inside one already
+    found, which remove_owned goes through): a few tenths of a second, once per grader run."""
+    found = [top for top in ("/tmp", "/var/tmp", "/dev/shm", "/run/lock") if os.path.isdir(top)
+             and not os.path.islink(top)]
+    folders = [("/", 0)]
+    while folders:
+        folder, level = folders.pop()
+        try:
+            entries = list(os.scandir(folder))
+        except OSError:
+            continue
+        for entry in entries:
+            if entry.path in ("/proc", "/sys"):
+                continue
+            try:
+                if not entry.is_dir(follow_symlinks=False):
+                    continue
+                mode = entry.stat(follow_symlinks=False).st_mode
+            except OSError:
+                continue
+            if mode & 0o002:
+                if entry.path not in found:
+                    found.append(entry.path)
+            elif level + 1 < depth:
+                folders.append((entry.path, level + 1))
+    return found
 
 
 def remove_owned(folder, uid, depth):

@@ -38,6 +38,8 @@ void cloth_parallel::step_xpbd(const cloth_parameters& p) {
   const double m = d.mass;
   const glm::dvec3 g = {0.0, 0.0, -d.gravity};
   const double damping_factor = 1.0 - d.damping * h;
+  cloth_parameters over_substep = p;  // the ground's friction over h
+  over_substep.dynamics.time_step = h;
   xpbd_external_.resize(state.position.size());
   xpbd_cloth_external_force(p, state.position, state.is_fixed, xpbd_normals_, xpbd_external_);
   const std::array<xpbd_compliance, 3> compliance = {
@@ -101,8 +103,7 @@ void cloth_parallel::step_xpbd(const cloth_parameters& p) {
     {
       if (p.sphere.enabled)
         apply_sphere_contact(p.sphere, h, state);
-      if (p.ground_enabled)
-        apply_ground_contact(p.ground_height, p.ground_friction, h, state);
+      apply_ground_contact(over_substep, state);
     }
   }
 

@@ -192,12 +192,9 @@ void spring_mesh::compute_force() {
   }
 }
 
-void apply_ground_contact(double ground_height, double ground_friction, double time_step,
-                          particle_system& particles) {
-  // [[maybe_unused]]: the TODO stub of the student copy does not use them yet.
-  [[maybe_unused]] const double z_g = ground_height;     // m
-  [[maybe_unused]] const double mu_g = ground_friction;  // 1/s
-  [[maybe_unused]] const double dt = time_step;          // s
+void apply_ground_contact(const cloth_parameters& parameters, particle_system& particles) {
+  if (!parameters.ground_enabled)
+    return;  // --ground-z none: no plane
   for (std::size_t k = 0; k < particles.size(); ++k) {
     if (particles.is_fixed[k])
       continue;
@@ -208,13 +205,19 @@ void apply_ground_contact(double ground_height, double ground_friction, double t
     // STUDENT(handout)| // may not stay below it, and a vertex in contact with it is slowed by a
     // STUDENT(handout)| // fluid friction of rate mu_g (like the damping of equation 3, along the
     // STUDENT(handout)| // plane). p and v are the vertex's position and velocity after the
-    // STUDENT(handout)| // integration, dt the step: decide what becomes of the position and of each
-    // STUDENT(handout)| // component of the velocity. For now the cloth falls through the floor.
-    // STUDENT(handout)| // Done when ./test.sh -L q9 passes and the cloth lies on the checkerboard.
-    // STUDENT(guided)| // TODO Q9 (ground): if the vertex is below the plane (p.z < z_g), put it back
-    // STUDENT(guided)| // on it (p.z = z_g), stop its fall (v.z = max(v.z, 0)) and damp its sliding by
-    // STUDENT(guided)| // fluid friction: (v.x, v.y) *= (1 - mu_g dt). For now the cloth falls
-    // STUDENT(guided)| // through the floor.
+    // STUDENT(handout)| // integration; z_g = parameters.ground_height, mu_g =
+    // STUDENT(handout)| // parameters.ground_friction and the step dt = parameters.dynamics.time_step.
+    // STUDENT(handout)| // Decide what becomes of the position and of each component of the
+    // STUDENT(handout)| // velocity. For now the cloth falls through the floor. Done when
+    // STUDENT(handout)| // ./test.sh -L q9 passes and the cloth lies on the checkerboard.
+    // STUDENT(guided)| // TODO Q9 (ground): with z_g = parameters.ground_height, mu_g =
+    // STUDENT(guided)| // parameters.ground_friction and dt = parameters.dynamics.time_step: if the
+    // STUDENT(guided)| // vertex is below the plane (p.z < z_g), put it back on it (p.z = z_g), stop
+    // STUDENT(guided)| // its fall (v.z = max(v.z, 0)) and damp its sliding by fluid friction:
+    // STUDENT(guided)| // (v.x, v.y) *= (1 - mu_g dt). For now the cloth falls through the floor.
+    const double z_g = parameters.ground_height;      // m
+    const double mu_g = parameters.ground_friction;   // 1/s
+    const double dt = parameters.dynamics.time_step;  // s
     if (p.z < z_g) {
       p.z = z_g;
       v.z = std::max(v.z, 0.0);

@@ -180,10 +180,9 @@ inline bool spring_mesh::spring_intact(int ku, int kv, int du, int dv) const {
 // n = normalize(d_u x d_v), d_u = p(min(ku+1,N-1),kv) - p(max(ku-1,0),kv), d_v likewise in kv.
 void compute_vertex_normals(int n, std::span<const double> position, std::span<double> normal);
 
-// The ground plane z = z_g, after the integrator (question 9): every particle that is not fixed
-// and is below it is put back on it, loses its downward velocity and has its tangential velocity
-// damped by (1 - mu_g dt).
-void apply_ground_contact(double ground_height, double ground_friction, double time_step,
-                          particle_system& particles);
+// The ground plane z = z_g, after the integrator (question 9), when parameters.ground_enabled:
+// every particle that is not fixed and is below it is put back on it, loses its downward
+// velocity and has its tangential velocity damped by (1 - mu_g dt).
+void apply_ground_contact(const cloth_parameters& parameters, particle_system& particles);
 
 }  // namespace clothlab

@@ -97,11 +97,11 @@ void spring_mesh::integrate_step() {
     // The sphere and the ground at the end of every substep (xpbd.hpp), in place of after the
     // step (apply_constraints).
     forces.contacts = [this](double substep, particle_system& particles) {
+      cloth_parameters over_substep = parameters;  // the contacts' friction over h
+      over_substep.dynamics.time_step = substep;
       if (parameters.sphere.enabled)
         apply_sphere_contact(parameters.sphere, substep, particles);
-      if (parameters.ground_enabled)  // question 9
-        apply_ground_contact(parameters.ground_height, parameters.ground_friction, substep,
-                             particles);
+      apply_ground_contact(over_substep, particles);  // question 9
     };
   }
   integrator_.step(d, forces, particles_);
@@ -140,8 +140,8 @@ void spring_mesh::apply_constraints() {
   const bool contacts_made = parameters.dynamics.integrator == integrator_kind::xpbd;
   if (parameters.sphere.enabled && !contacts_made)
     apply_sphere_contact(parameters.sphere, dt, particles_);
-  if (parameters.ground_enabled && !contacts_made)  // question 9
-    apply_ground_contact(parameters.ground_height, parameters.ground_friction, dt, particles_);
+  if (!contacts_made)
+    apply_ground_contact(parameters, particles_);  // question 9
   if (parameters.self_collision_thickness > 0.0)
     self_collision_.apply(grid_size_, self_collision_distance(parameters), particles_);
   if (parameters.tear_strain > 0.0)

@@ -24,7 +24,8 @@ std::vector<anatomy_row> anatomy_rows(const frame_anatomy& a) {
   const char* model = "spring_mesh.cpp";
   const char* forces = "spring_mesh.cpp (Q8 springs, Q13 wind)";
   const char* integration = "spring_mesh.cpp (Q6 loops)";
-  const char* constraints = "spring_mesh.cpp (Q9 apply_ground_contact)";
+  const char* constraints =
+      "apply_constraints (spring_mesh_step.cpp): apply_ground_contact (Q9, spring_mesh.cpp)";
   if (a.stage == stage_kind::spring) {
     model = "single_spring.cpp";
     forces = "single_spring.cpp (Q2, equation 2)";

@@ -26,12 +26,16 @@ constructor) and again in the tests. The class, graded as root with bubblewrap:
                   output stays valid (junit.xml parses)
   eve-cmdline     reads every process's /proc/PID/cmdline and looks for another student's
                   solution (and the teacher's) under each path it names, and for the files
-                  that eve-poison left in /tmp and /dev/shm
+                  that eve-poison left in /tmp, /dev/shm and /run/lock
   dave            the solution (honest, last)
 Then a second grader run over the same --work: the honest student 80, the stubs 0, the kit's
 checkers and record unchanged. Then the same attacks with bubblewrap refused
 (CLOTHLAB_GRADE_CONFINEMENT=user, as in Docker): a class readable by other users is refused
-(every runner could read the others), a closed one is graded with nothing read. Then the
+(every runner could read the others), a closed one is graded with nothing read, and with
+  eve-walker      walks the whole file system and tries to write in every folder and every
+                  file it sees outside its run folder and the shared places (/tmp, /var/tmp,
+                  /dev, /run/lock, which the grader empties of what it left)
+earning nothing. Then the
 daemon through the Gradescope bundle's run_autograder (AUTOGRADER_ROOT in a folder here), in
 the fallback: results.json is the grader's, and stays so. Then `scripts/grade *` in a class
 folder that holds a submission named --no-sandbox: refused, and graded in the sandbox with `--`.
@@ -56,6 +60,58 @@ from check_grade import Maker, check, problems, regions, run  # noqa: E402
 from check_hostile import COUPLED, attack_file, c_string  # noqa: E402
 
 UID = 65151  # the submissions' user of this test's graders (check_hostile.py has 65150)
+
+
+WALKER_PRELUDE = r"""#include <dirent.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+static bool clothlab_own(const std::string& p) {
+  char cwd[4096];
+  if (!::getcwd(cwd, sizeof cwd)) return false;
+  std::string c(cwd);
+  // its own run folder (the cwd's parent: run/), its /tmp, /dev, /proc
+  std::string run = c.substr(0, c.rfind('/'));
+  for (const std::string& own : {run, std::string("/tmp"), std::string("/dev"), std::string("/proc"), std::string("/sys"), std::string("/var/tmp"), std::string("/run/lock")})
+    if (p == own || p.rfind(own + "/", 0) == 0) return true;
+  return false;
+}
+static int clothlab_hits = 0;
+static void clothlab_walk(const std::string& dir, int depth, int& budget) {
+  if (depth > 12 || budget-- <= 0) return;
+  DIR* d = ::opendir(dir.c_str());
+  if (!d) return;
+  std::vector<std::string> subdirs;
+  while (const dirent* e = ::readdir(d)) {
+    const std::string name = e->d_name;
+    if (name == "." || name == "..") continue;
+    const std::string p = (dir == "/" ? "" : dir) + "/" + name;
+    struct stat s;
+    if (::lstat(p.c_str(), &s) != 0) continue;
+    if (S_ISDIR(s.st_mode)) {
+      if (!clothlab_own(p)) {
+        const std::string probe = p + "/.eve-walker-probe";
+        const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+        if (fd >= 0) { ::close(fd); ::unlink(probe.c_str()); ++clothlab_hits;
+          std::fprintf(stderr, "EVE-WALKER wrote in %s\n", p.c_str()); }
+      }
+      subdirs.push_back(p);
+    } else if (S_ISREG(s.st_mode) && !clothlab_own(p)) {
+      const int fd = ::open(p.c_str(), O_WRONLY | O_APPEND);
+      if (fd >= 0) { ::close(fd); ++clothlab_hits;
+        std::fprintf(stderr, "EVE-WALKER could write %s\n", p.c_str()); }
+    }
+  }
+  ::closedir(d);
+  for (const std::string& s : subdirs) clothlab_walk(s, depth + 1, budget);
+}"""
+WALKER_BODY = r"""    int budget = 200000;
+    clothlab_walk("/", 0, budget);
+    return clothlab_hits > 0;"""
 
 
 def attack_at_start(maker, folder, prelude, body):
@@ -177,9 +233,10 @@ class Class:
                   scratch / "copy/build-grade/tests/lab/lab_runner",
                   scratch / "copy/build-grade/tests/lab/poison",
                   scratch / "copy/shaders/gpu_step.frag", scratch.parent / "poison"]
-        # Left in the machine's shared places (the fallback's /tmp, /dev/shm), for the next
-        # student's code: eve-cmdline looks for them.
+        # Left in the machine's shared places (the fallback's /tmp, /dev/shm, /run/lock), for the
+        # next student's code: eve-cmdline looks for them.
         leftovers = [f"/tmp/{self.work.name}-leftover", f"/dev/shm/{self.work.name}-leftover"]
+        leftovers += [f"/run/lock/{self.work.name}-leftover"] if os.path.isdir("/run/lock") else []
         self.leftovers = leftovers
         eve = m.copy("eve-poison", cls, m.stubs)
         attack_at_start(m, eve, "#include <fcntl.h>\n#include <unistd.h>",
@@ -256,6 +313,11 @@ class Class:
             "            text.str().find(\"clothlab_attack\") == std::string::npos)\n"
             "          hit = true;\n      }\n    return hit;")
         made["eve-cmdline"] = eve
+        # Tries to write every folder and file it can see outside its own run folder and the
+        # places every user may write (which the grader empties after it).
+        eve = m.copy("eve-walker", cls, m.stubs)
+        attack_at_start(m, eve, WALKER_PRELUDE, WALKER_BODY)
+        made["eve-walker"] = eve
         return made
 
 
@@ -349,7 +411,8 @@ def main():
                   "the fallback graded a class that every submission's user can read")
             os.chmod(work, 0o700)
             user = c.grade(work / "out-user", alice, eves["eve-checker"], eves["eve-poison"],
-                           eves["eve-daemon"], eves["eve-cmdline"], carol, env=fallback)
+                           eves["eve-daemon"], eves["eve-cmdline"], eves["eve-walker"], carol,
+                           env=fallback)
         finally:
             os.chmod(root, mode)
         if check(user.returncode == 0 and "an unprivileged user and resource limits" in
@@ -360,7 +423,7 @@ def main():
             for name in ("alice", "carol"):
                 check(got.get(name, {}).get("score") == 80, f"fallback: {name} got "
                                                             f"{got.get(name, {}).get('score')}")
-            for name in ("eve-checker", "eve-poison", "eve-daemon", "eve-cmdline"):
+            for name in ("eve-checker", "eve-poison", "eve-daemon", "eve-cmdline", "eve-walker"):
                 check(got.get(name, {}).get("score") == 0, f"fallback: {name} earned "
                       f"{got.get(name, {}).get('score')}: {q5(got.get(name, {}))}")
             time.sleep(3)
@@ -369,7 +432,7 @@ def main():
         check(not (c.outside / "fake-checker-ran").exists(), "the fake checker ran as root")
         check(snapshot(kept) == before, "the kit changed in the fallback")
         check(not any(Path(p).exists() for p in c.leftovers),
-              f"fallback: what a submission left in /tmp or /dev/shm is still there: "
+              f"fallback: what a submission left in a shared folder is still there: "
               f"{[p for p in c.leftovers if Path(p).exists()]}")
 
         # 4. Gradescope: the daemon through the bundle's run_autograder, in the fallback.

@@ -186,7 +186,12 @@ std::string answer(objects& o, std::string_view request) {
     particle_system particles;
     particles.resize(state.is_fixed.size());
     set_particles(particles, state);
-    apply_ground_contact(height, friction, time_step, particles);
+    cloth_parameters ground;  // the plane on, at z_g, with mu_g and dt
+    ground.ground_enabled = true;
+    ground.ground_height = height;
+    ground.ground_friction = friction;
+    ground.dynamics.time_step = time_step;
+    apply_ground_contact(ground, particles);
     put_particles(out, 0, particles);
   } else if (operation == "gpu_load") {  // gpu_load <gpu id> <cloth id> <parameters> <state>
     const long long id = in.integer(0, 1LL << 40);
