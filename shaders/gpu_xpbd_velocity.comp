@@ -1,8 +1,8 @@
 // The compute-shader GPU path with --integrator xpbd (src/core/xpbd.hpp), pass 3 of a substep h:
 // the velocity of particle (ku, kv) is its motion over the substep, v = (p - x_prev) / h, its
-// displacement divided by h, and it moves by it, p = x_prev + displacement. After the last
-// substep, the constraints of the step (gpu_cloth_common.glsl's sphere and ground, over dt) and
-// the divergence check.
+// displacement divided by h, and it moves by it, p = x_prev + displacement; then the contacts
+// (gpu_cloth_common.glsl's sphere and ground, over h: time_step is h in this pass), every
+// substep as on the CPU (xpbd.hpp). After the last substep, the divergence check.
 #include "gpu_cloth_common.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -26,13 +26,11 @@ void main() {
   vec3 move = displacement[i].xyz;
   vec3 p = here.xyz + move;
   vec3 v = move / substep;
-  if (last_substep) {
-    sphere_contact(p, v);
-    ground_contact(p, v);
-    if (speed_bound > 0.0) {
-      bool finite = !any(isnan(p)) && !any(isinf(p)) && !any(isnan(v)) && !any(isinf(v));
-      if (!finite || length(v) > speed_bound) atomicAdd(diverged[step_index], 1u);
-    }
+  sphere_contact(p, v);
+  ground_contact(p, v);
+  if (last_substep && speed_bound > 0.0) {
+    bool finite = !any(isnan(p)) && !any(isinf(p)) && !any(isnan(v)) && !any(isinf(v));
+    if (!finite || length(v) > speed_bound) atomicAdd(diverged[step_index], 1u);
   }
   position[i] = vec4(p, 0.0);
   velocity[i] = vec4(v, 0.0);

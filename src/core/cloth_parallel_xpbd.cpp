@@ -38,6 +38,8 @@ void cloth_parallel::step_xpbd(const cloth_parameters& p) {
   const double m = d.mass;
   const glm::dvec3 g = {0.0, 0.0, -d.gravity};
   const double damping_factor = 1.0 - d.damping * h;
+  cloth_parameters over_substep = p;  // the ground's friction over h
+  over_substep.dynamics.time_step = h;
   xpbd_external_.resize(state.position.size());
   xpbd_cloth_external_force(p, state.position, state.is_fixed, xpbd_normals_, xpbd_external_);
   const std::array<xpbd_compliance, 3> compliance = {
@@ -96,12 +98,14 @@ void cloth_parallel::step_xpbd(const cloth_parameters& p) {
       if (!fixed[k])
         velocity[k] = (position[k] - x_prev[k]) / h;
     }
+    // 4. The contacts over h, as the readable path makes them (xpbd.hpp), on one thread.
+#pragma omp single
+    {
+      if (p.sphere.enabled)
+        apply_sphere_contact(p.sphere, h, state);
+      apply_ground_contact(over_substep, state);
+    }
   }
-
-  // The constraints of the step, as the readable path's apply_constraints: the sphere, the ground.
-  if (p.sphere.enabled)
-    apply_sphere_contact(p.sphere, d.time_step, state);
-  apply_ground_contact(p, state);
 
   double *x = x_[current_].data(), *y = y_[current_].data(), *z = z_[current_].data();
   for (std::ptrdiff_t k = 0; k < count; ++k) {

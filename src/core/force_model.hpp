@@ -9,6 +9,7 @@
 #include <span>
 
 #include "core/parameters.hpp"
+#include "core/particle_system.hpp"
 #include "core/spring.hpp"
 
 namespace clothlab {
@@ -33,6 +34,10 @@ struct force_model {
   // one colour share no particle (the cloth's cloth_constraint_colour). Empty: every spring has
   // colour 0 and they are visited in the order of their sets (a chain's, from the fixed end).
   std::function<int(const spring&)> colour = {};
+  // XPBD's contacts at the end of every substep h (the cloth's sphere and ground, over h, on the
+  // particles as they are): a contact made once after the step would be undone in the next
+  // step's first substep, and its push turned into a speed of its depth over h. Empty: none.
+  std::function<void(double substep, particle_system& particles)> contacts = {};
 };
 
 // force <- F(position), by forces.compute.

@@ -94,6 +94,15 @@ void spring_mesh::integrate_step() {
       xpbd_cloth_external_force(at_this_n, position, particles_.is_fixed, normals_, force);
     };
     forces.colour = [n = grid_size_](const spring& s) { return cloth_constraint_colour(s, n); };
+    // The sphere and the ground at the end of every substep (xpbd.hpp), in place of after the
+    // step (apply_constraints).
+    forces.contacts = [this](double substep, particle_system& particles) {
+      cloth_parameters over_substep = parameters;  // the contacts' friction over h
+      over_substep.dynamics.time_step = substep;
+      if (parameters.sphere.enabled)
+        apply_sphere_contact(parameters.sphere, substep, particles);
+      apply_ground_contact(over_substep, particles);  // question 9
+    };
   }
   integrator_.step(d, forces, particles_);
 }
@@ -126,10 +135,13 @@ void spring_mesh::apply_constraints() {
   // In the order of docs/model.md: the sphere (an addition), the ground (question 9),
   // self-collision (an addition), then tearing (an addition). The pins are apply_force's: it
   // never moves a fixed vertex.
+  // XPBD makes the sphere and ground contacts in its substeps (integrate_step).
   const double dt = parameters.dynamics.time_step;
-  if (parameters.sphere.enabled)
+  const bool contacts_made = parameters.dynamics.integrator == integrator_kind::xpbd;
+  if (parameters.sphere.enabled && !contacts_made)
     apply_sphere_contact(parameters.sphere, dt, particles_);
-  apply_ground_contact(parameters, particles_);  // question 9
+  if (!contacts_made)
+    apply_ground_contact(parameters, particles_);  // question 9
   if (parameters.self_collision_thickness > 0.0)
     self_collision_.apply(grid_size_, self_collision_distance(parameters), particles_);
   if (parameters.tear_strain > 0.0)

@@ -139,11 +139,13 @@ void xpbd_solver::step(const dynamics_parameters& dynamics, const force_model& f
             s.rest_length, alpha.alpha_tilde, alpha.gamma, multiplier_[c]);
       }
     }
-    // 3. The velocity is the motion over the substep.
+    // 3. The velocity is the motion over the substep; 4. the contacts, over h.
     for (std::size_t k = 0; k < count; ++k) {
       if (!particles.is_fixed[k])
         v[k] = (p[k] - x_prev[k]) / h;
     }
+    if (forces.contacts)
+      forces.contacts(h, particles);
   }
 }
 

@@ -15,10 +15,11 @@
 //      with n = (p_a - p_b) / |p_a - p_b|, w = 1/m (0 for a fixed or pinned particle),
 //      alpha~ = alpha / h^2 and gamma = alpha~ beta~ / h, beta~ = h^2 beta (beta, N s/m, the
 //      constraint's damping: --xpbd-damping);
-//   3. takes the velocity from the motion: v = (p - x_prev) / h.
-// The stage's constraints (the cloth's sphere and ground) come after the whole step, as for the
-// other integrators. On a linear spring one visit of its constraint is exactly backward Euler of
-// m x'' = -K x - beta x' over h: stable at every dt.
+//   3. takes the velocity from the motion: v = (p - x_prev) / h;
+//   4. makes the contacts (the cloth's sphere and ground, over h: force_model::contacts).
+// Self-collision and tearing come after the whole step, as for the other integrators. On a
+// linear spring one visit of its constraint is exactly backward Euler of m x'' = -K x - beta x'
+// over h: stable at every dt.
 //
 // The order of the visits is a Gauss-Seidel order: a constraint sees the moves of those before
 // it. The cloth's springs are visited in 12 colours (cloth_constraint_colour), each a set of
@@ -115,7 +116,8 @@ class xpbd_solver {
  public:
   // One step of dynamics.time_step with dynamics.xpbd's substeps, iterations and damping, on the
   // springs of forces.spring_sets (each set's K), the particles moved by forces.external (at the
-  // start of the step; none when it is empty), visited in forces.colour's order.
+  // start of the step; none when it is empty), visited in forces.colour's order, the contacts
+  // of forces.contacts at the end of every substep.
   void step(const dynamics_parameters& dynamics, const force_model& forces,
             particle_system& particles);
 

@@ -310,6 +310,8 @@ void gpu_cloth_compute::run_xpbd(const cloth_parameters& p, int count, bool chec
   const GLint colour_at = xpbd_solve_program_.uniform("colour");
   xpbd_velocity_program_.use();
   glUniform1f(xpbd_velocity_program_.uniform("substep"), f(h));
+  // The contacts come every substep, over h (xpbd.hpp).
+  glUniform1f(xpbd_velocity_program_.uniform("time_step"), f(h));
   glUniform1f(xpbd_velocity_program_.uniform("speed_bound"), check ? sent_speed_bound_ : 0.0f);
   const GLint first_at = xpbd_predict_program_.uniform("first_substep");
   const GLint last_at = xpbd_velocity_program_.uniform("last_substep");

@@ -59,6 +59,21 @@ def run(stage, steps, dt=None, K=20.0, Ks=5000., Ksh=2000., Kb=500., mu=None, m=
             if not fixed[dk]:
                 for i in range(3): E[dk][i]+=Kd*(drag[2][i]-P[dk][i])
         return E
+    def contact(k,tau):
+        # the sphere, then the ground, on particle k over tau (dt; xpbd: its substep h)
+        if stage=='cloth' and sphere is not None:
+            c=sphere[:3]; r=sphere[3]; d=sub(P[k],c); L=norm(d)
+            if L<r:
+                n=[d[0]/L,d[1]/L,d[2]/L] if L>0 else [0.,0.,1.]
+                vn=V[k][0]*n[0]+V[k][1]*n[1]+V[k][2]*n[2]
+                if vn<0:
+                    for i in range(3): V[k][i]-=vn*n[i]
+                vn=V[k][0]*n[0]+V[k][1]*n[1]+V[k][2]*n[2]
+                for i in range(3):
+                    V[k][i]=vn*n[i]+(1-mus*tau)*(V[k][i]-vn*n[i])
+                    P[k][i]=c[i]+r*n[i]
+        if stage=='cloth' and ground is not None and P[k][2]<ground:
+            P[k][2]=ground; V[k][2]=max(V[k][2],0.0); V[k][0]*=(1-mug*tau); V[k][1]*=(1-mug*tau)
     def xpbd_step():
         h=dt/substeps; E=external()
         order=sorted(range(len(springs)),key=lambda j:colour(springs[j][0],springs[j][1]))
@@ -85,6 +100,8 @@ def run(stage, steps, dt=None, K=20.0, Ks=5000., Ksh=2000., Kb=500., mu=None, m=
             for k in range(len(P)):
                 if not fixed[k]:
                     for i in range(3): V[k][i]=(P[k][i]-X[k][i])/h
+            for k in range(len(P)):
+                if not fixed[k]: contact(k,h)
     for s in range(1,steps+1):
         if integ=='xpbd':
             xpbd_step()
@@ -111,19 +128,8 @@ def run(stage, steps, dt=None, K=20.0, Ks=5000., Ksh=2000., Kb=500., mu=None, m=
                 for i in range(3): V[k][i]=(1-mu*dt)*V[k][i]+dt*a[i]; P[k][i]=P[k][i]+dt*V[k][i]
             else:
                 for i in range(3): pn=P[k][i]+dt*V[k][i]; V[k][i]=(1-mu*dt)*V[k][i]+dt*a[i]; P[k][i]=pn
-            if stage=='cloth' and sphere is not None:
-                c=sphere[:3]; r=sphere[3]; d=sub(P[k],c); L=norm(d)
-                if L<r:
-                    n=[d[0]/L,d[1]/L,d[2]/L] if L>0 else [0.,0.,1.]
-                    vn=V[k][0]*n[0]+V[k][1]*n[1]+V[k][2]*n[2]
-                    if vn<0:
-                        for i in range(3): V[k][i]-=vn*n[i]
-                    vn=V[k][0]*n[0]+V[k][1]*n[1]+V[k][2]*n[2]
-                    for i in range(3):
-                        V[k][i]=vn*n[i]+(1-mus*dt)*(V[k][i]-vn*n[i])
-                        P[k][i]=c[i]+r*n[i]
-            if stage=='cloth' and ground is not None and P[k][2]<ground:
-                P[k][2]=ground; V[k][2]=max(V[k][2],0.0); V[k][0]*=(1-mug*dt); V[k][1]*=(1-mug*dt)
+            if integ!='xpbd':  # xpbd: in its substeps
+                contact(k,dt)
         if stage=='cloth' and self_d>0:
             dP=[[0.,0.,0.] for _ in P]; dV=[[0.,0.,0.] for _ in P]
             for i in range(len(P)):

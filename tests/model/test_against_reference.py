@@ -28,11 +28,12 @@ cases += [
  (['--stage','cloth','--N','6','--steps','300','--tear-strain','0.1','--drag','5,5:1.5,1.5,0.5','--drag-stiffness','1000'], dict(stage='cloth',steps=300,N=6,tear=0.1,drag=(5,5,(1.5,1.5,0.5)),Kd=1000.0)),
 ]
 # XPBD (the teacher's copy's sixth integrator, model.md): the three stages, the cloth with wind,
-# drag and ground, the paper's damping and several sweeps.
+# drag and ground, the sphere (contacts in every substep), the paper's damping and several sweeps.
 cases += [
  (['--stage','spring','--steps','300','--integrator','xpbd','--K','500','--dt','0.02'], dict(stage='spring',steps=300,integ='xpbd',K=500,dt=0.02)),
  (['--stage','coupled','--chain','4','--steps','300','--integrator','xpbd','--K','50','--xpbd-substeps','3','--xpbd-iterations','2','--xpbd-damping','4'], dict(stage='coupled',steps=300,chain=4,K=50,integ='xpbd',substeps=3,iterations=2,beta=4.0)),
  (['--stage','cloth','--N','7','--steps','200','--integrator','xpbd','--dt','0.01','--wind-strength','15','--wind-dir','1,2,0.5','--ground-z','-0.4','--drag','6,6:0.6,0.6,0.3','--drag-stiffness','400'], dict(stage='cloth',steps=200,N=7,integ='xpbd',dt=0.01,Kw=15,wdir=(1,2,0.5),ground=-0.4,drag=(6,6,(0.6,0.6,0.3)),Kd=400.0)),
+ (['--stage','cloth','--N','6','--steps','200','--integrator','xpbd','--dt','0.01','--pins','none','--sphere','0,0,-0.6,0.3'], dict(stage='cloth',steps=200,N=6,integ='xpbd',dt=0.01,pins=False,sphere=(0,0,-0.6,0.3))),
  (['--stage','cloth','--N','6','--steps','150','--integrator','xpbd','--dt','0.02','--K-struct','1e5','--K-shear','4e4','--K-bend','1e4','--xpbd-substeps','4','--xpbd-iterations','3','--xpbd-damping','50','--pins','none','--ground-z','-0.3'], dict(stage='cloth',steps=150,N=6,integ='xpbd',dt=0.02,Ks=1e5,Ksh=4e4,Kb=1e4,substeps=4,iterations=3,beta=50.0,pins=False,ground=-0.3)),
 ]
 # The other paths on the same cloth cases: cpu-parallel in double precision (the same 1e-12),
