@@ -137,10 +137,11 @@ def clean_record(value):
 
 
 def headline(message):
-    """The line of a failure that says what is wrong in the handout's words ('Q8: ...')."""
+    """The line of a failure that says what is wrong in the handout's words ('Q8: ...', in
+    French 'Q8 : ...' with a no-break space)."""
     lines = message.splitlines()
-    return next((l.strip() for l in lines if re.match(r"^\s*Q\d+:", l)), lines[0] if lines
-                else "")
+    return next((l.strip() for l in lines if re.match(r"^\s*Q\d+[ \u00a0]?:", l)),
+                lines[0] if lines else "")
 
 
 def gradescope_results(record, lab, version, confinement=""):
