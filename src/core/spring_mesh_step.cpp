@@ -18,14 +18,18 @@ cloth_parameters spring_mesh::effective_parameters() const {
 
 // The pins: one trial step of apply_force from the state at rest with every vertex moving (speed
 // (1, 1, 1), no force); a vertex whose position it leaves exactly as it was is pinned (a free one
-// moves by dt (1 - mu dt) along x at least). Gravity: compute_force on the cloth at rest without
-// wind gives the springs' forces, zero within rounding, plus m g if it adds gravity. The state
-// is put back.
+// moves by dt (1 - mu dt) along x at least). Only with --pins corners and when load_model marked
+// none (question 7 pins in is_fixed or in apply_force, not both): apply_force runs at load only
+// for the answers that need it, so that one that prints or crashes stays question 6's. Gravity:
+// compute_force on the cloth at rest without wind gives the springs' forces, zero within rounding,
+// plus m g if it adds gravity. The state is put back.
 void spring_mesh::find_pins_and_gravity() {
   const dynamics_parameters d = effective_parameters().dynamics;
   const particle_system state = particles_;
   std::vector<std::uint8_t> pinned = state.is_fixed;
-  if (d.time_step > 0.0 && d.damping * d.time_step != 1.0) {  // else no trial can tell
+  const bool marked = std::find(pinned.begin(), pinned.end(), 1) != pinned.end();
+  const bool pinning = parameters.pins == pin_mode::corners && !marked;  // --pins none: none
+  if (pinning && d.time_step > 0.0 && d.damping * d.time_step != 1.0) {  // else none can tell
     std::fill(particles_.velocity.begin(), particles_.velocity.end(), 1.0);
     std::fill(particles_.force.begin(), particles_.force.end(), 0.0);
     apply_force();

@@ -127,8 +127,9 @@ bool gpu_cloth::supports_integrator(integrator_kind integrator, std::string& err
     return true;
   }
   if (integrator == integrator_kind::xpbd) {
-    error = tr("integrator xpbd: the fragment GPU path runs the mass-spring integrators "
-               "(semi-implicit and explicit) only; XPBD runs on GPU compute");
+    error =
+        tr("integrator xpbd: the fragment GPU path runs the mass-spring integrators "
+           "(semi-implicit and explicit) only; XPBD runs on GPU compute");
     return false;
   }
   error = format(tr("integrator %s: the GPU path runs semi-implicit or explicit only"),
@@ -137,8 +138,10 @@ bool gpu_cloth::supports_integrator(integrator_kind integrator, std::string& err
 }
 
 bool gpu_cloth::supports(const cloth_parameters& p, std::string& error) {
-  if (!supports_integrator(p.dynamics.integrator, error))
-    return false;
+  return supports_integrator(p.dynamics.integrator, error) && supports_contacts(p, error);
+}
+
+bool gpu_cloth::supports_contacts(const cloth_parameters& p, std::string& error) {
   if (p.self_collision_thickness > 0.0) {
     error = format(tr("self-collision (--self-collision %s): the GPU paths have no "
                       "self-collision; run the cloth on the CPU"),

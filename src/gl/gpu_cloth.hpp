@@ -50,6 +50,9 @@ class gpu_cloth {
   // Everything of p that the GPU paths run: their integrators, the drag, the sphere and
   // tearing; not self-collision (false, with error naming the option).
   static bool supports(const cloth_parameters& p, std::string& error);
+  // The contacts of p that the GPU paths run: all but self-collision (false, with error naming
+  // the option).
+  static bool supports_contacts(const cloth_parameters& p, std::string& error);
 
   // Uploads the CPU cloth's CURRENT state (positions, velocities, pinned flags, the rest lengths
   // of its three spring families, its torn springs), so that a run can switch from CPU to GPU at

@@ -99,13 +99,7 @@ bool gpu_cloth_compute::available(std::string& error) {
 bool gpu_cloth_compute::supports(const cloth_parameters& p, std::string& error) {
   if (p.dynamics.integrator != integrator_kind::xpbd)
     return gpu_cloth::supports(p, error);
-  if (p.self_collision_thickness > 0.0) {
-    error = format(tr("self-collision (--self-collision %s): the GPU paths have no "
-                      "self-collision; run the cloth on the CPU"),
-                   std::to_string(p.self_collision_thickness).c_str());
-    return false;
-  }
-  return true;
+  return gpu_cloth::supports_contacts(p, error);
 }
 
 bool gpu_cloth_compute::load(const spring_mesh& cloth, std::string& error) {
