@@ -52,8 +52,10 @@ void main() {
     int family = neighbours[s].z;
     force += spring_force(p, position[index_of(j)].xyz, stiffness[family], rest_length[family]);
   }
-  vec3 n = normal[i].xyz;
-  force += wind_strength * dot(n, wind_direction) * n;  // F_w = K_w <n, u_w> n
+  if (wind_strength != 0.0) {  // (the normals are computed only for a windy step)
+    vec3 n = normal[i].xyz;
+    force += wind_strength * dot(n, wind_direction) * n;  // F_w = K_w <n, u_w> n
+  }
   if (drag_enabled && k == drag_texel) force += drag_stiffness * (drag_target - p);
 
   vec3 p_new, v_new;

@@ -55,10 +55,6 @@ GLuint create_buffer(const std::vector<T>& data) {
   return buffer;
 }
 
-GLuint groups(int n) {
-  return static_cast<GLuint>((n + 7) / 8);  // local size 8 x 8
-}
-
 }  // namespace
 
 gpu_cloth_compute::~gpu_cloth_compute() {
@@ -170,7 +166,7 @@ void gpu_cloth_compute::compute_normals() {
   normal_program_.use();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, normal_);
-  glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
+  normal_program_.dispatch_over_grid(grid_size_);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   normals_current_ = true;
 }
@@ -263,7 +259,7 @@ void gpu_cloth_compute::run_mass_spring(const cloth_parameters& p, int count, bo
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, velocity_[read_]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, position_[write]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, velocity_[write]);
-    glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
+    step_program_.dispatch_over_grid(grid_size_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     read_ = write;  // ping-pong: the copy just written is the current state
     normals_current_ = false;
@@ -272,7 +268,7 @@ void gpu_cloth_compute::run_mass_spring(const cloth_parameters& p, int count, bo
     if (tear) {
       tear_program_.use();
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
-      glDispatchCompute(groups(grid_size_), groups(grid_size_), 1);
+      tear_program_.dispatch_over_grid(grid_size_);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
   }
@@ -314,7 +310,6 @@ void gpu_cloth_compute::run_xpbd(const cloth_parameters& p, int count, bool chec
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, xpbd_displacement_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, xpbd_multiplier_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, xpbd_external_force_);
-  const GLuint n_groups = groups(grid_size_);
   const bool wind = p.wind_strength != 0.0;
   const bool tear = p.tear_strain > 0.0;
   for (int s = 0; s < count; ++s) {
@@ -325,13 +320,13 @@ void gpu_cloth_compute::run_xpbd(const cloth_parameters& p, int count, bool chec
     for (int substep = 0; substep < settings.substeps; ++substep) {
       xpbd_predict_program_.use();
       glUniform1i(first_at, substep == 0);
-      glDispatchCompute(n_groups, n_groups, 1);
+      xpbd_predict_program_.dispatch_over_grid(grid_size_);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
       xpbd_solve_program_.use();
       for (int iteration = 0; iteration < settings.iterations; ++iteration) {
         for (int colour = 0; colour < cloth_constraint_colours; ++colour) {
           glUniform1i(colour_at, colour);
-          glDispatchCompute(n_groups, n_groups, 1);
+          xpbd_solve_program_.dispatch_over_grid(grid_size_);
           glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
       }
@@ -339,14 +334,14 @@ void gpu_cloth_compute::run_xpbd(const cloth_parameters& p, int count, bool chec
       glUniform1i(last_at, substep + 1 == settings.substeps);
       if (check)
         glUniform1i(step_at, s);
-      glDispatchCompute(n_groups, n_groups, 1);
+      xpbd_velocity_program_.dispatch_over_grid(grid_size_);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     normals_current_ = false;
     if (tear) {  // last in the step, from the new positions, into the mask
       tear_program_.use();
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_[read_]);
-      glDispatchCompute(n_groups, n_groups, 1);
+      tear_program_.dispatch_over_grid(grid_size_);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
   }

@@ -204,13 +204,15 @@ shader_program::~shader_program() {
 }
 
 shader_program::shader_program(shader_program&& other) noexcept
-    : id_(std::exchange(other.id_, 0)) {}
+    : id_(std::exchange(other.id_, 0)),
+      work_group_size_(std::exchange(other.work_group_size_, glm::ivec2(1, 1))) {}
 
 shader_program& shader_program::operator=(shader_program&& other) noexcept {
   if (this != &other) {
     if (id_ != 0)
       glDeleteProgram(id_);
     id_ = std::exchange(other.id_, 0);
+    work_group_size_ = std::exchange(other.work_group_size_, glm::ivec2(1, 1));
   }
   return *this;
 }
@@ -238,7 +240,21 @@ bool shader_program::load_compute(std::string_view compute_file, std::string& er
   GLuint compute = compile(GL_COMPUTE_SHADER, desktop_compute_header, compute_file, error);
   if (compute == 0)
     return false;
-  return link({compute}, shader_path(compute_file).string(), error);
+  if (!link({compute}, shader_path(compute_file).string(), error))
+    return false;
+  GLint size[3] = {1, 1, 1};
+  glGetProgramiv(id_, GL_COMPUTE_WORK_GROUP_SIZE, size);
+  work_group_size_ = {size[0], size[1]};
+  return true;
+#endif
+}
+
+void shader_program::dispatch_over_grid(int n) const {
+#if !defined(CLOTHLAB_GL_WEB)
+  const auto groups = [n](int size) { return static_cast<GLuint>((n + size - 1) / size); };
+  glDispatchCompute(groups(work_group_size_.x), groups(work_group_size_.y), 1);
+#else
+  (void)n;
 #endif
 }
 

@@ -44,6 +44,12 @@ class shader_program {
 
   GLuint id() const { return id_; }
   void use() const { glUseProgram(id_); }
+  // A compute program's work group size (its layout(local_size_x, local_size_y)); (1, 1) for
+  // any other program.
+  glm::ivec2 work_group_size() const { return work_group_size_; }
+  // glDispatchCompute of enough work groups to cover an n x n grid with one invocation per
+  // cell; the program must be in use.
+  void dispatch_over_grid(int n) const;
   GLint uniform(const char* name) const { return glGetUniformLocation(id_, name); }
   // Sets the uniform `name` of this program, which must be in use (use()); a name the program
   // does not have (or that its compiler removed as unused) is ignored, as GL does.
@@ -58,6 +64,7 @@ class shader_program {
   // Links the compiled shaders (and deletes them); files names them in an error.
   bool link(std::initializer_list<GLuint> shaders, const std::string& files, std::string& error);
   GLuint id_ = 0;
+  glm::ivec2 work_group_size_{1, 1};
 };
 
 }  // namespace clothlab
