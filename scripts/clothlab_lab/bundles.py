@@ -22,10 +22,14 @@ def debian_packages():
                     for word in line.split("#")[0].split()) if block else ""
 
 
-def make_bundle(path):
+def make_bundle(path, language="en"):
+    """The bundle, its kit the student copy in `language` (scripts/grade --lang)."""
+    if language not in grading.languages_of_copies():
+        raise SystemExit(f"grade: --lang {language}: no such language of the student copy "
+                         f"(the languages: {', '.join(grading.languages_of_copies())})")
     with tempfile.TemporaryDirectory(prefix="clothlab-bundle-") as tmp:
         kit = Path(tmp) / "clothlab-grade"
-        grading.generate_kit(kit)
+        grading.generate_kit(kit, language)
         # The grader and its package: their tracked files only.
         package = Path(__file__).resolve().parent.relative_to(ROOT).as_posix() + "/"
         grader = {"scripts/grade": kit / "grade"}

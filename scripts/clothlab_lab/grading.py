@@ -30,20 +30,22 @@ from pathlib import Path
 
 from . import manifest as lab_manifest
 from . import reports, sandbox as confinement, submissions
+from . import messages
 from .kits import (KIT_FORMAT, RUNNER, GradeError, Kit, build_dir, generate_kit, kit_copy,
-                   lab_targets, make_checkers, private_folder, read_kit, record_kit,
-                   runner_path, scratch_of)
+                   kit_language, lab_targets, languages_of_copies, make_checkers,
+                   private_folder, read_kit, record_kit, runner_path, scratch_of)
 from .manifest import ROOT
+from .messages import N_, _
 from .submissions import copy_files
 
 MAX_MESSAGES = 3  # failed checks shown per test (a loop over every vertex may fail hundreds)
 
 
-SIGNAL_WORDS = {signal.SIGSEGV: "a segmentation fault (memory accessed out of bounds, or a null "
-                                "pointer)", signal.SIGABRT: "an abort (a failed assertion, or an "
-                                "exception not caught)", signal.SIGFPE: "a floating-point "
-                                "exception (an integer divided by zero?)",
-                signal.SIGBUS: "a bus error", signal.SIGILL: "an illegal instruction"}
+SIGNAL_WORDS = {signal.SIGSEGV: N_("a segmentation fault (memory accessed out of bounds, or a "
+                                   "null pointer)"),
+                signal.SIGABRT: N_("an abort (a failed assertion, or an exception not caught)"),
+                signal.SIGFPE: N_("a floating-point exception (an integer divided by zero?)"),
+                signal.SIGBUS: N_("a bus error"), signal.SIGILL: N_("an illegal instruction")}
 
 
 def say(message):
@@ -66,7 +68,10 @@ def prepare_kit(work, box, args):
         kit.verify()
         return lab, version, kit
     if not args.kit:
-        generate_kit(work)
+        if args.lang not in languages_of_copies():
+            raise GradeError(f"--lang {args.lang}: no such language of the student copy "
+                             f"(the languages: {', '.join(languages_of_copies())})")
+        generate_kit(work, args.lang)
     lab, version = read_kit(work)
     try:
         record = json.loads((work / "kit.json").read_text())
@@ -185,7 +190,9 @@ def build_outside(work, lab, jobs):
         if configured.returncode != 0:
             raise GradeError("cmake could not configure the student copy:\n" +
                              configured.stdout[-3000:] + configured.stderr[-3000:])
-    process = subprocess.run(build_command(work, lab, jobs), stdout=subprocess.PIPE,
+    # The catalogues too: the checkers' hints and this grader's words in the kit's language.
+    targets = lab_targets(lab) + ["clothlab_catalogues"]
+    process = subprocess.run(build_command(work, lab, jobs, targets), stdout=subprocess.PIPE,
                              stderr=subprocess.STDOUT, text=True, errors="replace")
     return process.returncode == 0, process.stdout
 
@@ -214,19 +221,26 @@ def build_submission(work, lab, box, jobs):
         box.revoke(copy)
     output = confinement.read_written(log, 4 * confinement.MiB).decode("utf-8", "replace")
     if timed_out:
-        return False, f"the build did not finish within {limit:g} s; stopped\n{output[-3000:]}"
+        return False, _("the build did not finish within {seconds:g} s; stopped").format(
+            seconds=limit) + "\n" + output[-3000:]
     if code in (-signal.SIGXCPU, 128 + signal.SIGXCPU, -signal.SIGKILL):
-        return False, f"the build was stopped (a limit of processor time or memory)\n" \
-                      f"{output[-3000:]}"
+        return False, _("the build was stopped (a limit of processor time or memory)") + \
+            "\n" + output[-3000:]
     return code == 0, output
 
 
-def checker_environment(home, runner, prefix):
+def checker_environment(home, runner, prefix, language="en"):
     """The environment of a checker (the grader's program): no path of the scratch but the
-    runner's, which it starts only through the sandbox's words (prefix)."""
-    return {"PATH": "/usr/local/bin:/usr/bin:/bin", "HOME": str(home), "LC_ALL": "C.UTF-8",
-            "LANG": "C.UTF-8", "GTEST_COLOR": "no", "CLOTHLAB_LAB_RUNNER": str(runner),
-            "CLOTHLAB_LAB_SANDBOX": json.dumps(prefix)}
+    runner's, which it starts only through the sandbox's words (prefix). Its hints in
+    `language` (LC_MESSAGES: the programs choose their language from it, src/core/i18n.cpp),
+    its numbers in the C locale's form."""
+    environment = {"PATH": "/usr/local/bin:/usr/bin:/bin", "HOME": str(home), "LC_ALL": "C.UTF-8",
+                   "LANG": "C.UTF-8", "GTEST_COLOR": "no", "CLOTHLAB_LAB_RUNNER": str(runner),
+                   "CLOTHLAB_LAB_SANDBOX": json.dumps(prefix)}
+    if language != "en":
+        del environment["LC_ALL"]
+        environment["LC_MESSAGES"] = language
+    return environment
 
 
 def warm_mesa_cache(work, tests):
@@ -266,37 +280,42 @@ def run_program(kit, program, filters, number, run, output_limit, timeout):
         code, timed_out = box.run_outside(command, timeout, run["env"], log, cwd=verdicts,
                                           file_size=output_limit)
     if timed_out:
-        return "timeout", [f"did not finish within {timeout:g} s (an endless loop? a loop "
-                           "whose end condition never holds?); stopped"], None
+        return "timeout", [_("did not finish within {seconds:g} s (an endless loop? a loop "
+                             "whose end condition never holds?); stopped").format(
+                                 seconds=timeout)], None
     log_bytes = confinement.read_written(log_path, output_limit + 1)
     output = log_bytes[-4000:].decode("utf-8", "replace")
     if code in (-signal.SIGXFSZ, 128 + signal.SIGXFSZ) or len(log_bytes) >= output_limit:
-        return "output", [f"wrote more than {output_limit // 1024} KB of output (or of "
-                          "files); stopped. Remove the prints from the code that runs every "
-                          "step"], None
+        return "output", [_("wrote more than {size} KB of output (or of files); stopped. "
+                            "Remove the prints from the code that runs every step").format(
+                                size=output_limit // 1024)], None
     if code in (-signal.SIGXCPU, 128 + signal.SIGXCPU):
-        return "timeout", [f"used more than {timeout:g} s of processor time; stopped"], None
+        return "timeout", [_("used more than {seconds:g} s of processor time; stopped").format(
+            seconds=timeout)], None
     try:
         root = ElementTree.fromstring(confinement.read_written(xml_path, 64 << 20))
     except ElementTree.ParseError:
         if code < 0 or code > 128:
             number_of_signal = -code if code < 0 else code - 128
-            words = SIGNAL_WORDS.get(number_of_signal, f"signal {number_of_signal}")
-            return "crashed", [f"crashed: {words}"], None
-        return "crashed", [f"stopped with exit status {code} before the test could report (does "
-                           f"the code call exit()?). Last output:\n{tail_lines(output, 6)}"], None
+            words = _(SIGNAL_WORDS[number_of_signal]) if number_of_signal in SIGNAL_WORDS else \
+                _("signal {number}").format(number=number_of_signal)
+            return "crashed", [_("crashed: {what}").format(what=words)], None
+        return "crashed", [_("stopped with exit status {code} before the test could report "
+                             "(does the code call exit()?). Last output:").format(code=code) +
+                           "\n" + tail_lines(output, 6)], None
     cases = {}
     for case in root.iter("testcase"):
         messages = [clean_message(f.get("message") or f.text or "")
                     for f in list(case.iter("failure")) + list(case.iter("error"))]
         if len(messages) > MAX_MESSAGES:
-            messages = messages[:MAX_MESSAGES] + [f"... and {len(messages) - MAX_MESSAGES} "
-                                                  "more failed checks in this test"]
+            messages = messages[:MAX_MESSAGES] + [
+                _("... and {count} more failed checks in this test").format(
+                    count=len(messages) - MAX_MESSAGES)]
         cases[f"{case.get('classname')}.{case.get('name')}"] = (
             ("failed", messages) if messages else ("passed", []))
     if code != 0 and not any(status == "failed" for status, _ in cases.values()):
-        return "crashed", [f"exit status {code} although no check failed. Last output:\n"
-                           f"{tail_lines(output, 6)}"], None
+        return "crashed", [_("exit status {code} although no check failed. Last output:").format(
+            code=code) + "\n" + tail_lines(output, 6)], None
     return "ran", [], cases
 
 
@@ -318,7 +337,7 @@ def run_tests(work, kit, box, jobs, budget):
     prefix = box.prefix(writable=[run_dir], readable=[kit_copy(work)], chdir=run_dir / "cwd",
                         env=confinement.environment(run_dir / "home", kit_copy(work)))
     run = {"box": box, "verdicts": verdicts,
-           "env": checker_environment(verdicts, runner_path(work), prefix)}
+           "env": checker_environment(verdicts, runner_path(work), prefix, kit_language(work))}
     programs = {}  # checker -> [(test name, GoogleTest filter)]
     for _, name, program, test_filter in kit.tests:
         programs.setdefault(program, []).append((name, test_filter))
@@ -340,13 +359,14 @@ def run_tests(work, kit, box, jobs, budget):
 
     def alone(program, name, test_filter):
         if spent():
-            return name, ("timeout", [f"not run: this submission's {budget:g} s for its tests "
-                                      "were spent (by tests that did not finish)"])
+            return name, ("timeout", [_("not run: this submission's {seconds:g} s for its tests "
+                                        "were spent (by tests that did not finish)").format(
+                                            seconds=budget)])
         kind, messages, cases = run_program(kit, program, [test_filter], next(numbers), run,
                                             limits.test_output, limits.test_seconds)
         if kind == "ran" and test_filter in cases:
             return name, cases[test_filter]
-        return name, (kind if kind != "ran" else "crashed", messages or ["did not report"])
+        return name, (kind if kind != "ran" else "crashed", messages or [_("did not report")])
 
     try:
         with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
@@ -545,13 +565,15 @@ def grade_one(work, lab, version, reference, kit, submission, name, args, box, n
         record["notes"] += found
     except (ValueError, OSError) as error:
         taken = {}
-        record["notes"].append(f"cannot be read: {submissions.printable(str(error))}")
+        record["notes"].append(_("cannot be read: {why}").format(
+            why=submissions.printable(str(error))))
     if not taken:
-        record["notes"].append("no student file found (" + ", ".join(lab.student_files)
-                               + "): not a clothlab student copy? Every question gets 0")
+        record["notes"].append(_("no student file found ({files}): not a clothlab student copy? "
+                                 "Every question gets 0").format(
+                                     files=", ".join(lab.student_files)))
         for q in questions:
             record["questions"][q] = question_record("missing", kit.count(q),
-                                                     "no student file was handed in")
+                                                     _("no student file was handed in"))
         return finish(record, started, points)
 
     write_student_files(work, lab, taken)
@@ -569,14 +591,15 @@ def grade_one(work, lab, version, reference, kit, submission, name, args, box, n
                     broken[q.id] = first_error(output, kit_copy(work), f)
             write_student_files(work, lab, taken)
             ok, output = build_submission(work, lab, box, args.jobs)
-            record["notes"].append("does not compile: " + ", ".join(sorted(failing)) +
-                                   " (graded as the stub; its questions get 0)")
+            record["notes"].append(_("does not compile: {files} (graded as the stub; its "
+                                     "questions get 0)").format(files=", ".join(sorted(failing))))
         if not ok:
             record["build_error"] = first_error(output, kit_copy(work))
-            record["notes"].append("the build fails: every question gets 0")
+            record["notes"].append(_("the build fails: every question gets 0"))
             for q in questions:
                 record["questions"][q] = question_record(
-                    "build error", kit.count(q), "does not compile:\n" + record["build_error"])
+                    "build error", kit.count(q),
+                    _("does not compile:") + "\n" + record["build_error"])
             return finish(record, started, points)
     tests_started = time.monotonic()
     record["build_seconds"] = round(tests_started - build_started, 1)
@@ -589,22 +612,25 @@ def grade_one(work, lab, version, reference, kit, submission, name, args, box, n
             raise GradeError(f"{q}: {total} tests graded, the kit has {kit.count(q)}")
         if q in broken:
             record["questions"][q] = question_record("build error", total,
-                                                     "does not compile:\n" + broken[q])
+                                                     _("does not compile:") + "\n" + broken[q])
             continue
         status = "done" if passed == total else "to do"
-        lines = [f"{passed}/{total} tests passed: {score:g} of {points[q]:g} points"]
+        lines = [_("{passed}/{total} tests passed: {score:g} of {points:g} points").format(
+            passed=passed, total=total, score=score, points=points[q])]
+        kind_words = {"timeout": _("did not finish"), "crashed": _("crashed"),
+                      "output": _("printed too much"), "budget": _("not run")}
         for test, messages, kind in failures:
-            lines.append(f"\nFAILED {short_name(test)}" + ("" if kind == "failed" else
-                                                            f" ({kind})") + ":")
+            lines.append("\n" + (_("FAILED {test}:") if kind == "failed" else
+                                 _("FAILED {test} ({why}):")).format(
+                test=short_name(test), why=kind_words.get(kind, kind)))
             lines += ["  " + m.replace("\n", "\n  ") for m in messages]
         record["questions"][q] = question_record(
             status, total, "\n".join(lines), score, passed,
             [(short_name(t), m[0] if m else "", kind) for t, m, kind in failures])
         if any(kind != "failed" for _, _, kind in failures):
             kinds = sorted({kind for _, _, kind in failures if kind != "failed"})
-            record["notes"].append(f"{q}: tests that " + " / ".join(
-                {"timeout": "did not finish", "crashed": "crashed",
-                 "output": "printed too much"}.get(k, k) for k in kinds))
+            record["notes"].append(_("{question}: tests that {what}").format(
+                question=q, what=" / ".join(kind_words.get(k, k) for k in kinds)))
     return finish(record, started, points)
 
 
@@ -684,7 +710,13 @@ def grade_class(args):
             raise GradeError(str(error))
         for name in ("logs", "verdicts"):
             private_folder(work, name)
+        if args.kit and not args.prepare and args.lang not in ("en", kit_language(args.kit)):
+            raise GradeError(f"--lang {args.lang}: the kit {args.kit} is the copy in "
+                             f"{kit_language(args.kit)}; prepare one in {args.lang} (--prepare)")
         lab, version, kit = prepare_kit(work, box, args)
+        # What the students read (results.json, junit.xml) and the class's report: in the
+        # language of the copy they were handed (--lang), from the kit's catalogues.
+        messages.start(build_dir(work), kit_language(work))
         # (with --kit too: this script's own path, on the grader's command line, names the tree)
         if box.kind == "user" and (ROOT / "docs/answers.md").exists() and \
                 confinement.readable_by_submission(box, ROOT / "docs/answers.md"):
@@ -751,10 +783,11 @@ def grade_entries(args, work, lab, version, kit, box, entries, reference, starte
             except Exception as error:  # noqa: BLE001 (whatever a submission holds, go on)
                 record = {"name": name, "build_error": None,
                           "submission": submissions.printable(str(entry["original"])),
-                          "notes": [f"could not be graded: {type(error).__name__}: "
-                                    f"{submissions.printable(str(error))}"],
+                          "notes": [_("could not be graded: {what}").format(
+                              what=f"{type(error).__name__}: "
+                                   f"{submissions.printable(str(error))}")],
                           "questions": {q: question_record("missing", kit.count(q),
-                                                           "could not be graded")
+                                                           _("could not be graded"))
                                         for q in lab.ids}}
                 record = finish(record, began, lab.points)
             durations.append(time.monotonic() - began)
@@ -763,16 +796,16 @@ def grade_entries(args, work, lab, version, kit, box, entries, reference, starte
                 write_results(args, record, lab, version, box.description)
             except OSError as error:
                 unwritten += 1
-                record["notes"].append(f"its results.json and junit.xml could not be written: "
-                                       f"{submissions.printable(str(error))}")
+                record["notes"].append(_("its results.json and junit.xml could not be written: "
+                                         "{why}").format(why=submissions.printable(str(error))))
                 say(f"grade: {name}: the results could not be written: {error}")
             if not sys.stderr.isatty():
                 say(f"grade: {name}: {record['score']:g}/{record['max_score']:g} "
                     f"({durations[-1]:.0f} s)")
             progress(k, len(entries), name, started, durations)
     except GradeError as error:
-        stopped = f"the grader stopped after {len(records)} of {len(entries)} submissions: " \
-                  f"{error}"
+        stopped = _("the grader stopped after {graded} of {count} submissions: {why}").format(
+            graded=len(records), count=len(entries), why=error)
         for entry in entries[len(records):]:
             records.append(not_graded(entry, lab, stopped))
         raise

@@ -207,9 +207,15 @@ def make_checkers(work, lab):
     return tests
 
 
-def generate_kit(work):
+def languages_of_copies():
+    """The languages a student copy can be written in: English, then those of po/."""
+    return ["en"] + sorted(p.stem for p in (ROOT / "po").glob("*.po"))
+
+
+def generate_kit(work, language="en"):
     """Generates the student copy of this repository into work/base/copy (only the files that
-    changed: its build stays incremental), its stubs into work/stubs, and work/manifest.json."""
+    changed: its build stays incremental), in `language` (make-student-version --lang: the
+    copy the class was handed), its stubs into work/stubs, and work/manifest.json."""
     try:
         lab = lab_manifest.load()
     except lab_manifest.ManifestError as error:
@@ -220,7 +226,8 @@ def generate_kit(work):
     with tempfile.TemporaryDirectory(prefix="clothlab-grade-") as tmp:
         generated = Path(tmp) / "copy"
         made = subprocess.run([sys.executable, str(ROOT / "scripts/make-student-version"),
-                               str(generated)], capture_output=True, text=True)
+                               str(generated), "--lang", language], capture_output=True,
+                              text=True)
         if made.returncode != 0:
             raise GradeError("make-student-version failed:\n" + made.stderr)
         files = copy_files(generated)
@@ -230,11 +237,19 @@ def generate_kit(work):
         for name in lab.student_files:
             (work / "stubs" / name).parent.mkdir(parents=True, exist_ok=True)
             shutil.copyfile(generated / name, work / "stubs" / name)
-        (work / "manifest.json").write_text(json.dumps({"version": version, **lab.to_json()},
-                                                       indent=1) + "\n")
+        (work / "manifest.json").write_text(json.dumps(
+            {"version": version, "language": language, **lab.to_json()}, indent=1) + "\n")
         (work / "base" / "copy").mkdir(parents=True, exist_ok=True)
         os.chmod(work / "base", 0o700)
         sync(generated, work / "base" / "copy")
+
+
+def kit_language(work):
+    """The language of a prepared kit's copy (English for a kit made before it was recorded)."""
+    try:
+        return str(json.loads((work / "manifest.json").read_text()).get("language", "en"))
+    except (OSError, ValueError, AttributeError):
+        return "en"
 
 
 def read_kit(work):

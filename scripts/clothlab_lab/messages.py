@@ -71,3 +71,13 @@ def ngettext(singular, plural, n):
 def pgettext(context, text):
     return _current.pgettext(context, text)
 
+
+
+def N_(text):
+    """Marks a text for the catalogue where it is defined; _() translates it where it is shown."""
+    return text
+
+
+def current_language():
+    """The language start() chose ("en" before it)."""
+    return _language

@@ -11,7 +11,7 @@ import urllib.parse
 import xml.etree.ElementTree as ElementTree
 from collections import Counter
 
-from .messages import _, pgettext
+from .messages import _, current_language as language, pgettext
 
 
 # ------------------------------------------------------------------------------------------
@@ -104,7 +104,8 @@ def print_lab_table(lab, labels, outcome):
 # scripts/grade's outputs.
 
 def question_title(lab, q):
-    return lab.question(q).title
+    """The question's title in the user's language (grading/lab.json's, through the catalogue)."""
+    return pgettext("question", lab.question(q).title)
 
 
 # What no output may carry as it is: the terminal's colour sequences, then the characters that
@@ -146,9 +147,9 @@ def headline(message):
 
 def gradescope_results(record, lab, version, confinement=""):
     points = lab.points
-    output = "\n".join(record["notes"]) or "graded by the teacher's tests of every question"
+    output = "\n".join(record["notes"]) or _("graded by the teacher's tests of every question")
     if record["build_error"]:
-        output += "\n\nThe first compiler error:\n" + record["build_error"]
+        output += "\n\n" + _("The first compiler error:") + "\n" + record["build_error"]
     return {
         "score": record["score"],
         "execution_time": record["seconds"],
@@ -186,12 +187,13 @@ def junit_xml(record, lab):
                                       time="0")
         total += 1
         if info["status"] == "build error":
-            ElementTree.SubElement(case, "error", message="does not compile").text = info["output"]
+            ElementTree.SubElement(case, "error",
+                                   message=_("does not compile")).text = info["output"]
             failed += 1
         elif info["score"] < points[q]:
             ElementTree.SubElement(case, "failure",
-                                   message=f"{info['tests'] - info['passed']} test(s) failed"
-                                   ).text = info["output"]
+                                   message=_("{count} test(s) failed").format(
+                                       count=info["tests"] - info["passed"])).text = info["output"]
             failed += 1
         suite.set("tests", "1")
         suite.set("failures", "1" if info["status"] not in ("done", "build error") and
@@ -250,18 +252,23 @@ def write_report(path, records, lab, version, sandbox, elapsed, stopped=None):
     questions = list(lab.ids)
     points = lab.points
     e = html.escape
-    out = ["<!DOCTYPE html>", "<html lang='en'><head><meta charset='utf-8'>",
-           "<title>clothlab: grades of the class</title>", f"<style>{REPORT_STYLE}</style>",
-           "</head><body>", "<h1>clothlab: grades of the class</h1>"]
+    title = e(_("clothlab: grades of the class"))
+    out = ["<!DOCTYPE html>", f"<html lang='{e(language())}'><head><meta charset='utf-8'>",
+           f"<title>{title}</title>", f"<style>{REPORT_STYLE}</style>", "</head><body>",
+           f"<h1>{title}</h1>"]
     if stopped:
-        out.append(f"<p class='stopped'><b>Grading stopped:</b> {e(clean_text(stopped))}</p>")
-    out += [f"<p class='meta'>{len(records)} submissions, graded "
-            f"{time.strftime('%Y-%m-%d %H:%M')} in {elapsed:.0f} s; copy version {e(version)}; "
-            f"sandbox: {e(sandbox)}</p>",
-            "<h2>The class</h2>", "<table id='class'><tr><th>student</th>"]
+        out.append("<p class='stopped'><b>" + e(_("Grading stopped:")) + "</b> " +
+                   e(clean_text(stopped)) + "</p>")
+    out += ["<p class='meta'>" + e(_("{count} submissions, graded {date} in {seconds:.0f} s; "
+                                     "copy version {version}; sandbox: {sandbox}").format(
+                count=len(records), date=time.strftime('%Y-%m-%d %H:%M'), seconds=elapsed,
+                version=version, sandbox=sandbox)) + "</p>",
+            "<h2>" + e(_("The class")) + "</h2>",
+            "<table id='class'><tr><th>" + e(_("student")) + "</th>"]
     out += [f"<th title='{e(question_title(lab, q))}'>{q} ({points[q]:g})</th>"
             for q in questions]
-    out.append(f"<th>total ({sum(points.values()):g})</th><th>notes</th></tr>")
+    out.append("<th>" + e(_("total")) + f" ({sum(points.values()):g})</th><th>" +
+               e(_("notes")) + "</th></tr>")
     for r in records:
         out.append(f"<tr><td>{e(r['name'])}</td>")
         for q in questions:
@@ -272,18 +279,21 @@ def write_report(path, records, lab, version, sandbox, elapsed, stopped=None):
             kind = ("err" if info["status"] in ("build error", "missing") else
                     "full" if info["score"] >= points[q] else "zero" if info["score"] == 0
                     else "part")
-            label = "build" if info["status"] == "build error" else f"{info['score']:g}"
-            out.append(f"<td class='num {kind}' title='{info['passed']}/{info['tests']} tests'>"
-                       f"{label}</td>")
+            label = e(_("build")) if info["status"] == "build error" else f"{info['score']:g}"
+            tests = e(_("{passed}/{count} tests").format(passed=info["passed"],
+                                                           count=info["tests"]))
+            out.append(f"<td class='num {kind}' title='{tests}'>{label}</td>")
         total = f"{r['score']:g}" if r.get("graded", True) else "-"
         out.append(f"<td class='num'>{total}</td><td class='notes'>"
                    f"{'<br>'.join(e(n) for n in r['notes'])}</td></tr>")
     out.append("</table>")
-    out.append("<p class='meta'>Green: every test passes; yellow: some; red: none; grey: "
-               "nothing to grade (build: the question's file does not compile). Points in "
-               "grading/lab.json.</p>")
-    out += ["<h2>Each question</h2>", "<table id='questions'><tr><th>question</th><th>done (all "
-            "tests pass)</th><th>mean score</th><th>tests passed</th></tr>"]
+    out.append("<p class='meta'>" + e(_(
+        "Green: every test passes; yellow: some; red: none; grey: nothing to grade (build: the "
+        "question's file does not compile). Points in grading/lab.json.")) + "</p>")
+    out += ["<h2>" + e(_("Each question")) + "</h2>",
+            "<table id='questions'><tr>" + "".join(
+                f"<th>{e(h)}</th>" for h in (_("question"), _("done (all tests pass)"),
+                                               _("mean score"), _("tests passed"))) + "</tr>"]
     for q in questions:
         done = sum(1 for r in records if r["questions"][q]["status"] == "done")
         rate = done / len(records) if records else 0
@@ -295,7 +305,7 @@ def write_report(path, records, lab, version, sandbox, elapsed, stopped=None):
                    f"{len(records)} ({rate:.0%})</td><td class='num'>{mean:.1f} / "
                    f"{points[q]:g}</td><td class='num'>{passed}/{total}</td></tr>")
     out.append("</table>")
-    out.append("<h2>What the class got wrong: the most frequent failures</h2>")
+    out.append("<h2>" + e(_("What the class got wrong: the most frequent failures")) + "</h2>")
     for q in questions:
         counts = Counter()
         example = {}
@@ -303,8 +313,8 @@ def write_report(path, records, lab, version, sandbox, elapsed, stopped=None):
             seen = set()
             info = r["questions"][q]
             if info["status"] == "build error":
-                seen.add(("does not compile", "(each submission's details give its compiler "
-                                              "error)"))
+                seen.add((_("does not compile"), _("(each submission's details give its "
+                                                   "compiler error)")))
             for test, message, kind in info["failures"]:
                 key = (test, headline(message) if message else kind)
                 seen.add(key)
@@ -315,10 +325,11 @@ def write_report(path, records, lab, version, sandbox, elapsed, stopped=None):
         out.append(f"<h3>{q}: {e(question_title(lab, q))}</h3><ol class='failures'>")
         for (test, first), count in counts.most_common(3):
             more = example.get((test, first), "")
-            out.append(f"<li><b>{count} of {len(records)}</b> {e(test)}: <pre>"
-                       f"{e(more or first)}</pre></li>")
+            out.append("<li><b>" + e(_("{count} of {total}").format(count=count,
+                                                                   total=len(records))) +
+                       f"</b> {e(test)}: <pre>{e(more or first)}</pre></li>")
         out.append("</ol>")
-    out.append("<h2>Each submission</h2>")
+    out.append("<h2>" + e(_("Each submission")) + "</h2>")
     for r in records:
         out.append(f"<details><summary>{e(r['name'])}: {r['score']:g} / {r['max_score']:g}"
                    f"</summary>")

@@ -9,6 +9,7 @@ import stat
 from pathlib import Path
 
 from .manifest import MARKER_FILE
+from .messages import _
 
 NOT_PROJECT = ("build", "out", ".git", "Testing")  # a submission's folders that are not compared
 
@@ -51,7 +52,7 @@ def stage(submission, dest, limits):
             path = Path(folder) / file
             info = path.lstat()
             if not stat.S_ISREG(info.st_mode):
-                note = "holds links or special files: not taken"
+                note = _("holds links or special files: not taken")
                 if note not in notes:
                     notes.append(note)
                 continue
@@ -120,23 +121,23 @@ def take_student_files(submission_root, flat_folder, student_files, reference, k
             if len(found) == 1:
                 taken[name] = found[0].read_bytes()
         if taken:
-            notes.append("the student's files were handed in loose (not in a copy of the "
-                         "project): found by their names")
+            notes.append(_("the student's files were handed in loose (not in a copy of the "
+                           "project): found by their names"))
         return taken, notes
     for name in student_files:
         path = submission_root / name
         inside = submission_root.resolve() in path.resolve().parents
         if path.is_file() and (path.is_symlink() or not inside):
-            notes.append(f"{name} is a link: not taken (the stub is graded)")
+            notes.append(_("{file} is a link: not taken (the stub is graded)").format(file=name))
         elif path.is_file():
             if path.stat().st_size > max_file_bytes:
-                notes.append(f"{name} is larger than {max_file_bytes // (1 << 20)} MB: not taken "
-                             "(the stub is graded)")
+                notes.append(_("{file} is larger than {size} MB: not taken (the stub is "
+                               "graded)").format(file=name, size=max_file_bytes // (1 << 20)))
                 continue
             taken[name] = path.read_bytes()
     missing = [n for n in student_files if n not in taken]
     if missing and taken:
-        notes.append("missing, graded as the stub: " + ", ".join(missing))
+        notes.append(_("missing, graded as the stub: {files}").format(files=", ".join(missing)))
     submitted = copy_files(submission_root)
     their_version = marker_version(submitted.get(MARKER_FILE))
     edited = sorted(n for n in set(submitted) & set(reference)
@@ -146,27 +147,32 @@ def take_student_files(submission_root, flat_folder, student_files, reference, k
     added = sorted(set(submitted) - set(reference) - set(student_files) - {MARKER_FILE})
 
     def listed(names):
-        return ", ".join(names[:8]) + (f" and {len(names) - 8} more" if len(names) > 8 else "")
+        return ", ".join(names[:8]) + (_(" and {count} more").format(count=len(names) - 8)
+                                       if len(names) > 8 else "")
 
     if MARKER_FILE not in submitted:
-        notes.append(f"no {MARKER_FILE} file: the version of the copy cannot be told")
+        notes.append(_("no {file} file: the version of the copy cannot be told").format(
+            file=MARKER_FILE))
     elif their_version and their_version != kit_version:
-        notes.append(f"made from another version of the student copy (version {their_version}; "
-                     f"this one is {kit_version}): graded with this version's tests and build "
-                     "files")
+        notes.append(_("made from another version of the student copy (version {theirs}; this "
+                       "one is {ours}): graded with this version's tests and build files").format(
+                           theirs=their_version, ours=kit_version))
     elif not their_version:
-        notes.append(f"its {MARKER_FILE} carries no version (an older copy?)")
+        notes.append(_("its {file} carries no version (an older copy?)").format(file=MARKER_FILE))
     if edited and their_version and their_version != kit_version:
-        notes.append(f"{len(edited)} file(s) that are not the student's own differ from this "
-                     f"version's (the teacher's are used): {listed(edited)}")
+        notes.append(_("{count} file(s) that are not the student's own differ from this "
+                       "version's (the teacher's are used): {files}").format(
+                           count=len(edited), files=listed(edited)))
     elif edited:
-        notes.append(f"changed {len(edited)} file(s) that are not the student's own, ignored "
-                     f"(the teacher's are used): {listed(edited)}")
+        notes.append(_("changed {count} file(s) that are not the student's own, ignored (the "
+                       "teacher's are used): {files}").format(count=len(edited),
+                                                             files=listed(edited)))
     if absent:
-        notes.append(f"lacks {len(absent)} file(s) of the copy (the teacher's are used): "
-                     f"{listed(absent)}")
+        notes.append(_("lacks {count} file(s) of the copy (the teacher's are used): {files}")
+                     .format(count=len(absent), files=listed(absent)))
     if added:
-        notes.append(f"adds {len(added)} file(s), ignored: {listed(added)}")
+        notes.append(_("adds {count} file(s), ignored: {files}").format(count=len(added),
+                                                                         files=listed(added)))
     return taken, notes
 
 

@@ -14,6 +14,7 @@
 
 #include "core/parameter_table.hpp"  // the sliders' ranges
 #include "core/stability.hpp"        // the core's: step-size limits (question 4)
+#include "core/xpbd.hpp"             // whether XPBD is built (not in the student copy)
 #include "window/analysis_views.hpp"
 #include "window/gpu_section.hpp"
 #include "window/layout_probe.hpp"
@@ -85,9 +86,12 @@ void edit_dynamics(dynamics_parameters& dynamics, stage_kind stage,
     parameter_slider(ui_label("XPBD damping beta (N s/m)"), dynamics.xpbd.constraint_damping,
                      "--xpbd-damping", stage, "%.2f");
   }
-  if (cloth)  // the same line on both paths, so that switching moves nothing
-    fixed_lines(tr("GPU fragment: the two Euler schemes only; GPU compute: these and xpbd"), 1,
-                text_style::disabled);
+  if (cloth) {  // the same lines on both paths, so that switching moves nothing
+    fixed_lines(xpbd_available()
+                    ? tr("GPU fragment: the two Euler schemes only; GPU compute: these and xpbd")
+                    : tr("GPU fragment: the two Euler schemes only"),
+                2, text_style::disabled);
+  }
 }
 
 // The mouse drag's spring on a mass of stages 1 and 2 (model.md, "drag").
