@@ -13,25 +13,15 @@ one is another version (a note, in French).
 """
 import json
 import re
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
-problems = []
+sys.dont_write_bytecode = True  # (no __pycache__ beside the tests)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from check_grade import check, problems, run  # noqa: E402 (the class's checks, shared)
+
 NBSP = "\u00a0"
-
-
-def check(condition, message):
-    if not condition:
-        problems.append(message)
-        print("FAILED: " + message, flush=True)
-    return condition
-
-
-def run(command):
-    print("$ " + " ".join(str(c) for c in command), flush=True)
-    return subprocess.run([str(c) for c in command], capture_output=True, text=True)
 
 
 def main():
