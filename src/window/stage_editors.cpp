@@ -14,7 +14,6 @@
 
 #include "core/parameter_table.hpp"  // the sliders' ranges
 #include "core/stability.hpp"        // the core's: step-size limits (question 4)
-#include "core/xpbd.hpp"             // whether XPBD is built (not in the student copy)
 #include "window/analysis_views.hpp"
 #include "window/gpu_section.hpp"
 #include "window/layout_probe.hpp"
@@ -87,7 +86,12 @@ void edit_dynamics(dynamics_parameters& dynamics, stage_kind stage,
                      "--xpbd-damping", stage, "%.2f");
   }
   if (cloth) {  // the same lines on both paths, so that switching moves nothing
-    fixed_lines(xpbd_available()
+    // The compute path's half only where it runs XPBD: not in the browser (WebGL2 has no
+    // compute shaders), nor in the student copy (no XPBD).
+    cloth_parameters asked;
+    asked.dynamics.integrator = integrator_kind::xpbd;
+    std::string why_not;
+    fixed_lines(cloth_paths::runs(cloth_backend::gpu_compute, asked, why_not)
                     ? tr("GPU fragment: the two Euler schemes only; GPU compute: these and xpbd")
                     : tr("GPU fragment: the two Euler schemes only"),
                 2, text_style::disabled);
