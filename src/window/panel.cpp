@@ -42,10 +42,9 @@ void show_readouts(const scene& the_scene) {
 
   // The cloth's path: G and M act on the cloth whatever stage is shown.
   if (the_scene.stage() == stage_kind::cloth) {
-    std::string why_not;
     switch (the_scene.backend()) {
       case cloth_backend::gpu:
-        fixed_lines(the_scene.compute_offered(why_not)
+        fixed_lines(the_scene.next_cloth_backend() == cloth_backend::gpu_compute
                         ? tr("cloth on the GPU (float, fragment shaders)   G: compute")
                         : tr("cloth on the GPU (float, fragment shaders)   G: CPU"),
                     1, text_style::coloured, quiet_green);
@@ -56,7 +55,10 @@ void show_readouts(const scene& the_scene) {
         break;
       case cloth_backend::cpu:
       case cloth_backend::cpu_parallel:  // (not offered by the window: --backend refuses it)
-        fixed_lines(tr("cloth on the CPU (double)   G: GPU"), 1);
+        fixed_lines(the_scene.next_cloth_backend() == cloth_backend::gpu_compute
+                        ? tr("cloth on the CPU (double)   G: GPU compute")
+                        : tr("cloth on the CPU (double)   G: GPU"),
+                    1);
         break;
     }
   } else {

@@ -143,6 +143,8 @@ class scene {
   // why in backend_message(). Works whatever stage is shown; reset() keeps the path.
   void switch_cloth_backend(cloth_backend target);
   void toggle_cloth_backend();  // key G: CPU -> GPU -> GPU compute (where offered) -> CPU
+  // Where key G takes the cloth from its path now (XPBD goes from the CPU to GPU compute).
+  cloth_backend next_cloth_backend() const;
   cloth_backend backend() const { return paths_.backend(); }
   // True when the cloth as now set up can run on that GPU path; otherwise false with the reason
   // (the integrator, tearing or self-collision, the grid size, or a context older than 4.3).

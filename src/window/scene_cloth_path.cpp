@@ -77,29 +77,27 @@ void scene::switch_cloth_backend(cloth_backend target) {
   std::fflush(stdout);
 }
 
-void scene::toggle_cloth_backend() {
+cloth_backend scene::next_cloth_backend() const {
+  std::string why;
   switch (backend()) {
     case cloth_backend::cpu:
     case cloth_backend::cpu_parallel:
       // XPBD skips the fragment path, which runs the mass-spring integrators only.
-      if (std::string why;
-          !cloth_paths::runs(cloth_backend::gpu, cloth_stage.parameters, why) &&
+      if (!cloth_paths::runs(cloth_backend::gpu, cloth_stage.parameters, why) &&
           cloth_paths::runs(cloth_backend::gpu_compute, cloth_stage.parameters, why) &&
           compute_offered(why))
-        switch_cloth_backend(cloth_backend::gpu_compute);
-      else
-        switch_cloth_backend(cloth_backend::gpu);
-      return;
+        return cloth_backend::gpu_compute;
+      return cloth_backend::gpu;
     case cloth_backend::gpu:
-      if (std::string why; compute_offered(why))
-        switch_cloth_backend(cloth_backend::gpu_compute);
-      else
-        switch_cloth_backend(cloth_backend::cpu);
-      return;
+      return compute_offered(why) ? cloth_backend::gpu_compute : cloth_backend::cpu;
     case cloth_backend::gpu_compute:
-      switch_cloth_backend(cloth_backend::cpu);
-      return;
+      return cloth_backend::cpu;
   }
+  return cloth_backend::cpu;
+}
+
+void scene::toggle_cloth_backend() {
+  switch_cloth_backend(next_cloth_backend());
 }
 
 void scene::fall_back_to_cpu(const std::string& reason) {
