@@ -379,6 +379,23 @@ def without_hints(text):
     return "\n\n".join(kept) + "\n"
 
 
+def in_language(outputs, language):
+    """A copy in `language`: each document that has a twin in it (docs/lab.md and docs/lab.fr.md)
+    is the twin's text, so that docs/lab.md is French in the French copy, and the twin's line that
+    points to the English one (*English: `docs/lab.md`.*) is left out of both."""
+    for name in list(outputs):
+        twin = re.fullmatch(rf"(docs/.+)\.{re.escape(language)}\.md", name)
+        if not twin or f"{twin.group(1)}.md" not in outputs:
+            continue
+        english = f"{twin.group(1)}.md"
+        data, mode = outputs[name]
+        lines = data.decode("utf-8").split("\n")
+        pointer = re.compile(rf"^\*\w+\s*: `{re.escape(english)}`\.\*$")
+        text = "\n".join(line for line in lines if not pointer.match(line))
+        text = re.sub(r"\A(# [^\n]*\n)\n\n", r"\1\n", text)  # (the blank line it leaves)
+        outputs[name] = outputs[english] = (text.encode("utf-8"), mode)
+
+
 def generate(root, dest, lab, keep=(), hints="handout", answers=Answers(), language="en"):
     """Writes the student copy of root into dest, its TODOs and README's tasks in `language`
     (po/<language>.po); returns what it wrote, in words. RegionError names the file and line of
@@ -415,6 +432,8 @@ def generate(root, dest, lab, keep=(), hints="handout", answers=Answers(), langu
     missing = [q for q in questions if q not in questions_found]
     if missing:
         raise RegionError(f"no solution region for {', '.join(missing)}")
+    if language != "en":
+        in_language(outputs, language)
     if "README.md" in outputs:
         readme = outputs["README.md"][0].decode("utf-8")
         if TASKS_LINE not in readme:

@@ -112,6 +112,12 @@ def check_french(root, copy, level):
     for catalogue in sorted((copy / "po").glob("*.po*")):
         check('msgctxt "TODO"' not in catalogue.read_text(encoding="utf-8"),
               f"the copy's {catalogue.name} holds the TODOs of the sources (both levels)")
+    # docs/lab.md, the walk through the lab, is the French one (docs/lab.fr.md's text, without
+    # its pointer to an English twin the copy no longer has).
+    lab = (copy / "docs/lab.md").read_text(encoding="utf-8")
+    check(lab.startswith("# Le TP, question par question") and "English:" not in lab and
+          lab == (copy / "docs/lab.fr.md").read_text(encoding="utf-8"),
+          f"docs/lab.md of the French copy ({level}) is not docs/lab.fr.md's French")
 
 
 def check_english(root, copy):
@@ -128,6 +134,8 @@ def check_english(root, copy):
           f"{sorted(set(found) ^ set(expected))[:6]}")
     readme = (copy / "README.md").read_text(encoding="utf-8")
     check("## Your tasks" in readme, "README.md of the English copy has no 'Your tasks'")
+    check((copy / "docs/lab.md").read_text(encoding="utf-8").startswith(
+        "# The lab, question by question"), "docs/lab.md of the English copy is not English")
 
 
 def check_build(copy, work):
