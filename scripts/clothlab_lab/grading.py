@@ -715,8 +715,9 @@ def grade_class(args):
                              f"{kit_language(args.kit)}; prepare one in {args.lang} (--prepare)")
         lab, version, kit = prepare_kit(work, box, args)
         # What the students read (results.json, junit.xml) and the class's report: in the
-        # language of the copy they were handed (--lang), from the kit's catalogues.
-        messages.start(build_dir(work), kit_language(work))
+        # language of the copy they were handed (--lang), from the kit's catalogues (beside its
+        # checkers: make_checkers).
+        messages.start(work / "checkers", kit_language(work))
         # (with --kit too: this script's own path, on the grader's command line, names the tree)
         if box.kind == "user" and (ROOT / "docs/answers.md").exists() and \
                 confinement.readable_by_submission(box, ROOT / "docs/answers.md"):

@@ -202,6 +202,11 @@ def make_checkers(work, lab):
         entries.append({"question": question, "name": name, "program": program.name,
                         "filter": gtest_filter(command)})
     (new / "tests.json").write_text(json.dumps(entries, indent=1) + "\n")
+    # The catalogues beside the checkers, where they and this grader read them (the checkers'
+    # hints in the kit's language): the grader's own copy, hashed with the kit, never the
+    # scratch copy's build, which a submission's build may write.
+    if (build_dir(work) / "locale").is_dir():
+        shutil.copytree(build_dir(work) / "locale", new / "locale", symlinks=False)
     shutil.rmtree(work / "checkers", ignore_errors=True)
     new.rename(work / "checkers")
     return tests
