@@ -18,6 +18,7 @@
 #include "gl/gl_context.hpp"
 #include "gl/gpu_cloth.hpp"
 #include "gl/gpu_cloth_compute.hpp"
+#include "offscreen_suite.hpp"
 #include "single_precision.hpp"
 
 namespace clothlab {
@@ -26,31 +27,10 @@ namespace {
 // The agreement cases and their tolerances: agreement_cases.hpp, single_precision.hpp.
 constexpr int grid_size = agreement_grid_size;
 
-class GpuCloth : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    std::string error;
-    context_ = create_offscreen_context(16, 16, error).release();
-    ASSERT_NE(context_, nullptr) << error;
-  }
-  static void TearDownTestSuite() {
-    delete context_;
-    context_ = nullptr;
-  }
-
-  static gl_context* context_;
-};
-gl_context* GpuCloth::context_ = nullptr;
+class GpuCloth : public offscreen_suite<> {};
 
 cloth_parameters small_cloth() {
   return agreement_cloth();
-}
-
-double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double largest = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    largest = std::max(largest, std::abs(a[i] - b[i]));
-  return largest;
 }
 
 double max_position_difference(const spring_mesh& a, const spring_mesh& b) {

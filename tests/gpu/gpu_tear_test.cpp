@@ -22,6 +22,7 @@
 #include "gl/gpu_cloth.hpp"
 #include "gl/gpu_cloth_compute.hpp"
 #include "gl/renderer.hpp"
+#include "offscreen_suite.hpp"
 #include "single_precision.hpp"
 
 namespace clothlab {
@@ -30,20 +31,7 @@ namespace {
 constexpr int width = 320;  // pixels of the off-screen framebuffer
 constexpr int height = 240;
 
-class GpuTearing : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    std::string error;
-    context_ = create_offscreen_context(width, height, error).release();
-    ASSERT_NE(context_, nullptr) << error;
-  }
-  static void TearDownTestSuite() {
-    delete context_;
-    context_ = nullptr;
-  }
-  static gl_context* context_;
-};
-gl_context* GpuTearing::context_ = nullptr;
+class GpuTearing : public offscreen_suite<width, height> {};
 
 // One GPU path behind one interface, so that every test runs on both.
 struct gpu_path {

@@ -27,32 +27,13 @@
 #include "gl/gl.hpp"
 #include "gl/gl_context.hpp"
 #include "gl/gpu_cloth_compute.hpp"
+#include "offscreen_suite.hpp"
 #include "single_precision.hpp"
 
 namespace clothlab {
 namespace {
 
-class GpuXpbd : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    std::string error;
-    context_ = create_offscreen_context(16, 16, error).release();
-    ASSERT_NE(context_, nullptr) << error;
-  }
-  static void TearDownTestSuite() {
-    delete context_;
-    context_ = nullptr;
-  }
-  static gl_context* context_;
-};
-gl_context* GpuXpbd::context_ = nullptr;
-
-double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double largest = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    largest = std::max(largest, std::abs(a[i] - b[i]));
-  return largest;
-}
+class GpuXpbd : public offscreen_suite<> {};
 
 struct xpbd_case {
   const char* name;
